@@ -1,0 +1,80 @@
+# boltrom: build, run and test. `make` builds bin/boltrom; `make run` runs the main job;
+# `make test` runs the test suite. Missing Debian packages are installed first
+# (scripts/install-deps, needs root).
+PETSC_DIR ?= /usr/lib/petsc
+SLEPC_DIR ?= /usr/lib/slepc
+export PETSC_DIR SLEPC_DIR
+
+PYTHON   ?= /usr/bin/python3
+NP       ?= 2
+LEVEL    ?= 1
+export OMPI_ALLOW_RUN_AS_ROOT = 1
+export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM = 1
+export OPENBLAS_NUM_THREADS = 1
+
+SLEPC_VARS := $(wildcard $(SLEPC_DIR)/lib/slepc/conf/slepc_variables)
+ifeq ($(SLEPC_VARS),)
+# Nothing installed yet: install the stack, then run the same goal again.
+.DEFAULT_GOAL := all
+all bin/boltrom run test bench mesh tests-c:
+	bash scripts/install-deps
+	$(MAKE) $@
+else
+include $(SLEPC_VARS)
+
+LIB_SRC  := $(filter-out src/main.c,$(wildcard src/*.c))
+LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
+TEST_SRC := $(wildcard tests/c/*.c)
+TEST_BIN := $(patsubst tests/c/%.c,bin/%,$(TEST_SRC))
+HEADERS  := $(wildcard include/*.h)
+
+WARN     := -Wall -Wextra -Wno-unused-parameter -Werror=implicit-function-declaration -Werror=implicit-int -Werror=return-type
+CFLAGS_B := -O2 -g $(WARN) -Iinclude $(SLEPC_CC_INCLUDES)
+LDLIBS_B := $(SLEPC_LIB) $(PETSC_LIB) -lmetis -lm
+
+.DEFAULT_GOAL := all
+all: bin/boltrom $(TEST_BIN)
+
+build/%.o: src/%.c $(HEADERS)
+	@mkdir -p build
+	@echo "  CC  $<"
+	@$(PCC) $(CFLAGS_B) -c $< -o $@
+
+build/libboltrom.a: $(LIB_OBJ)
+	@ar rcs $@ $^
+
+bin/boltrom: src/main.c build/libboltrom.a $(HEADERS)
+	@mkdir -p bin
+	@echo "  LD  $@"
+	@$(PCC) $(CFLAGS_B) $< build/libboltrom.a -o $@ $(LDLIBS_B)
+
+bin/%: tests/c/%.c build/libboltrom.a $(HEADERS)
+	@mkdir -p bin
+	@echo "  LD  $@"
+	@$(PCC) $(CFLAGS_B) $< build/libboltrom.a -o $@ $(LDLIBS_B)
+
+tests-c: $(TEST_BIN)
+
+deps:
+	bash scripts/install-deps
+
+MESH_LEVEL1 := output/mesh/joint-L$(LEVEL).msh
+$(MESH_LEVEL1):
+	@mkdir -p output/mesh
+	$(PYTHON) scripts/mesh-joint --level $(LEVEL) --output $@
+
+mesh: deps $(MESH_LEVEL1)
+
+# The main job at this stage: the paper-level joint, tied static solve and eigenfrequencies.
+run: deps all $(MESH_LEVEL1)
+	mpiexec -n $(NP) bin/boltrom -options_file inputs/tied-joint.yaml -mesh $(MESH_LEVEL1) \
+	  -output_dir output/tied-joint -summary output/tied-joint/summary.json
+
+test: deps all
+	$(PYTHON) -m pytest -q tests
+
+clean:
+	rm -rf build bin
+
+.PHONY: all deps run test mesh clean tests-c
+endif

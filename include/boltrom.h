@@ -1,0 +1,183 @@
+#ifndef BOLTROM_H
+#define BOLTROM_H
+/* boltrom: vibration of bolted joints with contact, full and reduced order models.
+   One struct per concept, each with a Create / SetFromOptions / SetUp / View / Destroy cycle. */
+#include <petscdmplex.h>
+#include <petscksp.h>
+#include <slepceps.h>
+#include <petscsf.h>
+#include <petscbt.h>
+#include "boltrom_element.h"
+
+#define BOLTROM_MAX_PARTS 32
+#define BOLTROM_MAX_PAIRS 32
+#define BOLTROM_NAME_LEN  128
+
+/* ------------------------------------------------------------------ log_events.c */
+typedef struct {
+  PetscLogEvent meshRead, meshDistribute, assembly, contactSetUp, contactAssembly, loads;
+  PetscLogEvent factorization, staticSolve, modalSolve, output;
+  PetscLogStage stageSetUp, stageStatic, stageModal, stageOutput;
+} BoltLog;
+extern BoltLog boltLog;
+PetscErrorCode BoltLogRegister(void);
+
+/* ------------------------------------------------------------------ material.c */
+typedef struct {
+  char      name[BOLTROM_NAME_LEN];
+  PetscReal E, nu, rho;
+} BoltMaterial;
+
+typedef struct {
+  PetscInt     nmat;
+  BoltMaterial mat[BOLTROM_MAX_PARTS];
+} BoltMaterialTable;
+
+PetscErrorCode BoltMaterialTableSetFromOptions(MPI_Comm, BoltMaterialTable *);
+PetscErrorCode BoltMaterialTableFind(MPI_Comm, const BoltMaterialTable *, const char[], PetscInt *);
+
+/* ------------------------------------------------------------------ mesh.c */
+/* The distributed mesh, its parts and groups, and the DOF layout (3 per vertex, clamp removed). */
+typedef struct {
+  MPI_Comm          comm;
+  char              filename[PETSC_MAX_PATH_LEN];
+  char              clampGroup[BOLTROM_NAME_LEN];
+  PetscBool         clamp;          /* remove the clamp group's DOFs from the global system */
+  char              partitioner[64]; /* metis (ours, through a shell partitioner) or a PETSc type */
+  DM                dm;
+  PetscInt          nparts;
+  char              partName[BOLTROM_MAX_PARTS][BOLTROM_NAME_LEN];
+  PetscInt          partMaterial[BOLTROM_MAX_PARTS]; /* index in the material table */
+  char              partMaterialMap[PETSC_MAX_PATH_LEN]; /* part:material,... */
+  PetscInt          cStart, cEnd, vStart, vEnd;
+  PetscInt         *cellPart;        /* part index of each local cell */
+  PetscBool        *vertexGhost;     /* vertex owned by another rank (vStart-based) */
+  PetscInt          partTag[BOLTROM_MAX_PARTS]; /* gmsh physical tag = label value */
+  PetscInt          nverticesGlobal, ncellsGlobal, ndofsFree;
+  PetscInt          edgeCut;         /* faces between cells of different ranks, after distribution */
+  BoltMaterialTable materials;
+  Hex8Formulation   formulation;
+} BoltMesh;
+
+PetscErrorCode BoltMeshCreate(MPI_Comm, BoltMesh **);
+PetscErrorCode BoltMeshSetFromOptions(BoltMesh *);
+PetscErrorCode BoltMeshSetUp(BoltMesh *);
+PetscErrorCode BoltMeshView(BoltMesh *, PetscViewer);
+PetscErrorCode BoltMeshDestroy(BoltMesh **);
+PetscErrorCode BoltMeshHasGroup(BoltMesh *, const char[], PetscBool *);
+PetscErrorCode BoltMeshCellCoordinates(BoltMesh *, PetscInt, PetscReal[24]);
+PetscErrorCode BoltMeshCellDofs(BoltMesh *, PetscInt, PetscInt[24]);
+PetscErrorCode BoltMeshCellVertices(BoltMesh *, PetscInt, PetscInt[8]);
+PetscErrorCode BoltMeshVertexDofs(BoltMesh *, PetscInt, PetscInt[3]);
+PetscErrorCode BoltMeshVertexOwned(BoltMesh *, PetscInt, PetscBool *);
+PetscErrorCode BoltMeshGroupVertices(BoltMesh *, const char[], PetscBool, PetscInt *, PetscInt **);
+PetscErrorCode BoltMeshFillVertexField(BoltMesh *, PetscErrorCode (*)(const PetscReal[3], PetscInt, PetscReal[3], void *), void *, Vec);
+
+/* ------------------------------------------------------------------ assembly.c */
+typedef struct {
+  BoltMesh  *mesh;
+  Mat        K, M;             /* structural stiffness and consistent mass, clamp removed */
+  PetscReal  rayleighAlpha, rayleighBeta;
+  PetscReal  massPerPart[BOLTROM_MAX_PARTS], volumePerPart[BOLTROM_MAX_PARTS];
+  PetscInt   elementsPerPart[BOLTROM_MAX_PARTS];
+} BoltAssembler;
+
+PetscErrorCode BoltAssemblerCreate(BoltMesh *, BoltAssembler **);
+PetscErrorCode BoltAssemblerSetFromOptions(BoltAssembler *);
+PetscErrorCode BoltAssemblerSetUp(BoltAssembler *);
+PetscErrorCode BoltAssemblerDamping(BoltAssembler *, Mat *);
+PetscErrorCode BoltAssemblerPartStiffness(BoltAssembler *, PetscInt, Mat *);
+PetscErrorCode BoltAssemblerView(BoltAssembler *, PetscViewer);
+PetscErrorCode BoltAssemblerDestroy(BoltAssembler **);
+
+/* ------------------------------------------------------------------ contact.c */
+/* A contact element: two matching quad faces, a and b. Only the owner of face a keeps it. */
+typedef struct {
+  PetscInt  pair;
+  PetscReal Xa[12];
+  PetscInt  dofs[24]; /* global DOFs of [a nodes, b nodes], -1 where clamped */
+} BoltContactElement;
+
+typedef struct {
+  BoltMesh           *mesh;
+  PetscInt            npairs;
+  char                pairName[BOLTROM_MAX_PAIRS][BOLTROM_NAME_LEN];
+  PetscInt            pairPart[BOLTROM_MAX_PAIRS][2];
+  PetscReal           penaltyFactor;              /* x E of the softer part, per metre */
+  PetscReal           epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS];
+  PetscInt            contactDofsPerPair[BOLTROM_MAX_PAIRS], contactDofs;
+  PetscInt            elementsPerPair[BOLTROM_MAX_PAIRS];
+  PetscReal           areaPerPair[BOLTROM_MAX_PAIRS];
+  PetscReal           matchTolerance;              /* relative to the mesh size */
+  PetscInt            nelem;
+  BoltContactElement *elem;
+} BoltContactSet;
+
+PetscErrorCode BoltContactSetCreate(BoltMesh *, BoltContactSet **);
+PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *);
+PetscErrorCode BoltContactSetSetUp(BoltContactSet *);
+PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *, Mat, Mat *);
+PetscErrorCode BoltContactSetView(BoltContactSet *, PetscViewer);
+PetscErrorCode BoltContactSetDestroy(BoltContactSet **);
+
+/* ------------------------------------------------------------------ loads.c */
+typedef struct {
+  BoltMesh *mesh;
+  char      loadGroup[BOLTROM_NAME_LEN];
+  PetscReal loadDirection[3], loadForce;
+  char      preloadGroup[2][BOLTROM_NAME_LEN];
+  PetscReal preloadAxis[3], preloadForce;
+  PetscBool hasPreload;
+  Vec       load, preload; /* unit-amplitude-times-force patterns, global layout */
+  char      probeGroup[BOLTROM_NAME_LEN]; /* probe: displacement component at this point group */
+  PetscInt  probeComponent;
+  PetscInt  probeDof;               /* global DOF of the probe on its owner, -1 elsewhere */
+  PetscReal probeCoord[3];
+} BoltLoadSet;
+
+PetscErrorCode BoltLoadSetCreate(BoltMesh *, BoltLoadSet **);
+PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *);
+PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *, Vec);
+PetscErrorCode BoltLoadSetProbe(BoltLoadSet *, Vec, PetscReal *);
+PetscErrorCode BoltLoadSetView(BoltLoadSet *, PetscViewer);
+PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **);
+
+/* ------------------------------------------------------------------ analysis.c */
+PetscErrorCode BoltStaticSolve(Mat, Vec, Vec, const char[]);
+PetscErrorCode BoltModalSolve(Mat, Mat, PetscInt, const char[], PetscInt *, PetscReal[]);
+
+/* ------------------------------------------------------------------ output.c */
+typedef struct {
+  MPI_Comm comm;
+  char     dir[PETSC_MAX_PATH_LEN];
+  char     name[BOLTROM_NAME_LEN];
+  char     h5tmp[PETSC_MAX_PATH_LEN], h5final[PETSC_MAX_PATH_LEN];
+  PetscViewer viewer;
+  PetscInt nfields;
+  char     field[16][BOLTROM_NAME_LEN];
+  PetscInt fieldComponents[16];
+  PetscBool fieldOnCells[16];
+} BoltOutput;
+
+PetscErrorCode BoltOutputOpen(BoltMesh *, const char[], const char[], BoltOutput *);
+PetscErrorCode BoltOutputVertexField(BoltOutput *, BoltMesh *, Vec, const char[]);
+PetscErrorCode BoltOutputClose(BoltOutput *, BoltMesh *);
+
+/* JSON summary: a flat writer for the keys the README documents. */
+typedef struct {
+  FILE     *fp;
+  char      tmp[PETSC_MAX_PATH_LEN], final[PETSC_MAX_PATH_LEN];
+  PetscInt  depth;
+  PetscBool first[16];
+} BoltJSON;
+PetscErrorCode BoltJSONOpen(MPI_Comm, const char[], BoltJSON *);
+PetscErrorCode BoltJSONBeginObject(BoltJSON *, const char[]);
+PetscErrorCode BoltJSONEndObject(BoltJSON *);
+PetscErrorCode BoltJSONInt(BoltJSON *, const char[], PetscInt);
+PetscErrorCode BoltJSONReal(BoltJSON *, const char[], PetscReal);
+PetscErrorCode BoltJSONString(BoltJSON *, const char[], const char[]);
+PetscErrorCode BoltJSONRealArray(BoltJSON *, const char[], PetscInt, const PetscReal[]);
+PetscErrorCode BoltJSONClose(BoltJSON *);
+PetscErrorCode BoltMakeDir(MPI_Comm, const char[]);
+
+#endif

@@ -1,0 +1,73 @@
+/* Linear analyses of an assembled model: static solve and undamped eigenfrequencies, both
+   with a MUMPS LU factorisation (defaults set here, overridable through the prefix). */
+#include "boltrom.h"
+
+PetscErrorCode BoltStaticSolve(Mat K, Vec f, Vec u, const char prefix[])
+{
+  KSP                ksp;
+  PC                 pc;
+  KSPConvergedReason reason;
+  PetscReal          norm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.staticSolve, 0, 0, 0, 0));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)K), &ksp));
+  PetscCall(KSPSetOptionsPrefix(ksp, prefix));
+  PetscCall(KSPSetOperators(ksp, K, K));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetErrorIfNotConverged(ksp, PETSC_FALSE));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(PetscLogEventBegin(boltLog.factorization, 0, 0, 0, 0));
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(PetscLogEventEnd(boltLog.factorization, 0, 0, 0, 0));
+  PetscCall(KSPSolve(ksp, f, u));
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  PetscCall(VecNorm(u, NORM_2, &norm));
+  PetscCheck(reason >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)K), PETSC_ERR_NOT_CONVERGED, "Static solve failed (%s, |u| = %g): the stiffness matrix is singular, i.e. some part is not held; check the clamp group and the contact pairs", KSPConvergedReasons[reason], (double)norm);
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(PetscLogEventEnd(boltLog.staticSolve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The nev lowest eigenfrequencies [Hz] of K x = w^2 M x, by shift-and-invert about 0. */
+PetscErrorCode BoltModalSolve(Mat K, Mat M, PetscInt nev, const char prefix[], PetscInt *nconv, PetscReal freq[])
+{
+  EPS eps;
+  ST  st;
+  KSP ksp;
+  PC  pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.modalSolve, 0, 0, 0, 0));
+  PetscCall(EPSCreate(PetscObjectComm((PetscObject)K), &eps));
+  PetscCall(EPSSetOptionsPrefix(eps, prefix));
+  PetscCall(EPSSetOperators(eps, K, M));
+  PetscCall(EPSSetProblemType(eps, EPS_GHEP));
+  PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+  PetscCall(EPSSetTarget(eps, 0.0));
+  PetscCall(EPSSetTolerances(eps, 1e-10, PETSC_DEFAULT));
+  PetscCall(EPSGetST(eps, &st));
+  PetscCall(STSetType(st, STSINVERT));
+  PetscCall(STGetKSP(st, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(EPSSetFromOptions(eps));
+  PetscCall(EPSSolve(eps));
+  PetscCall(EPSGetConverged(eps, nconv));
+  PetscCheck(*nconv >= nev, PetscObjectComm((PetscObject)K), PETSC_ERR_NOT_CONVERGED, "Eigensolver found %" PetscInt_FMT " of %" PetscInt_FMT " eigenpairs: raise -%seps_max_it or check the model", *nconv, nev, prefix ? prefix : "");
+  *nconv = PetscMin(*nconv, nev);
+  for (PetscInt i = 0; i < *nconv; i++) {
+    PetscScalar kr;
+    PetscCall(EPSGetEigenvalue(eps, i, &kr, NULL));
+    freq[i] = PetscSqrtReal(PetscMax(PetscRealPart(kr), 0.0)) / (2 * PETSC_PI);
+  }
+  PetscCall(EPSDestroy(&eps));
+  PetscCall(PetscLogEventEnd(boltLog.modalSolve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,423 @@
+/* Contact set: the pairs of matching quad faces named contact_<pair>_a / contact_<pair>_b,
+   found in parallel by node coordinates, with their penalties and element matrices. Each
+   element is kept by the rank that owns its face a; the DOFs of side b are global indices,
+   so the element's matrix is assembled straight into the distributed system. */
+#include "boltrom.h"
+
+PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
+{
+  BoltContactSet *c;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  c->mesh           = mesh;
+  c->penaltyFactor  = 200.0;
+  c->matchTolerance = 1e-6;
+  *cs               = c;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
+  PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m]", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
+  PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
+  PetscFunctionReturn(0);
+}
+
+/* Pair names from the labels contact_<pair>_a on rank 0, broadcast so all ranks agree. */
+static PetscErrorCode BoltContactFindPairs(BoltContactSet *c)
+{
+  BoltMesh   *m = c->mesh;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+  c->npairs = 0;
+  if (rank == 0) {
+    PetscInt nlabels;
+    PetscCall(DMGetNumLabels(m->dm, &nlabels));
+    for (PetscInt l = 0; l < nlabels; l++) {
+      const char *name;
+      size_t      len;
+      PetscBool   pre;
+
+      PetscCall(DMGetLabelName(m->dm, l, &name));
+      PetscCall(PetscStrlen(name, &len));
+      PetscCall(PetscStrncmp(name, "contact_", 8, &pre));
+      if (!pre || len < 11 || name[len - 2] != '_' || name[len - 1] != 'a') continue;
+      PetscCheck(c->npairs < BOLTROM_MAX_PAIRS, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "More than %d contact pairs", BOLTROM_MAX_PAIRS);
+      PetscCall(PetscStrncpy(c->pairName[c->npairs], name + 8, len - 9));
+      c->npairs++;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&c->npairs, 1, MPIU_INT, 0, m->comm));
+  PetscCallMPI(MPI_Bcast(c->pairName, BOLTROM_MAX_PAIRS * BOLTROM_NAME_LEN, MPI_CHAR, 0, m->comm));
+  for (PetscInt p = 0; p < c->npairs; p++) {
+    char      nb[BOLTROM_NAME_LEN + 16];
+    PetscBool has;
+
+    PetscCall(PetscSNPrintf(nb, sizeof(nb), "contact_%s_b", c->pairName[p]));
+    PetscCall(BoltMeshHasGroup(m, nb, &has));
+    PetscCheck(has, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s has side a (contact_%s_a) but no side b: add the physical surface group %s", c->pairName[p], c->pairName[p], nb);
+  }
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  PetscReal x[3];
+  PetscInt  dofs[3];
+} BoltNode;
+
+static int BoltNodeCompareX(const void *a, const void *b)
+{
+  PetscReal xa = ((const BoltNode *)a)->x[0], xb = ((const BoltNode *)b)->x[0];
+  return (xa > xb) - (xa < xb);
+}
+
+/* All owned vertices of a group, from every rank, sorted by x. */
+static PetscErrorCode BoltContactGatherNodes(BoltContactSet *c, const char group[], PetscInt *nnodes, BoltNode **nodes)
+{
+  BoltMesh          *m = c->mesh;
+  PetscInt           nv, *verts, ntot = 0;
+  BoltNode          *mine, *all;
+  Vec                coords;
+  PetscSection       cs;
+  const PetscScalar *x;
+  PetscMPIInt        size, nbytes, *counts, *displs;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(m->comm, &size));
+  PetscCall(BoltMeshGroupVertices(m, group, PETSC_TRUE, &nv, &verts));
+  PetscCall(PetscMalloc1(nv + 1, &mine));
+  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
+  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(VecGetArrayRead(coords, &x));
+  for (PetscInt i = 0; i < nv; i++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(cs, verts[i], &off));
+    for (PetscInt d = 0; d < 3; d++) mine[i].x[d] = PetscRealPart(x[off + d]);
+    PetscCall(BoltMeshVertexDofs(m, verts[i], mine[i].dofs));
+  }
+  PetscCall(VecRestoreArrayRead(coords, &x));
+  PetscCall(PetscFree(verts));
+  PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
+  nbytes = (PetscMPIInt)(nv * sizeof(BoltNode));
+  PetscCallMPI(MPI_Allgather(&nbytes, 1, MPI_INT, counts, 1, MPI_INT, m->comm));
+  displs[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+  ntot = displs[size] / (PetscInt)sizeof(BoltNode);
+  PetscCall(PetscMalloc1(ntot + 1, &all));
+  PetscCallMPI(MPI_Allgatherv(mine, nbytes, MPI_BYTE, all, counts, displs, MPI_BYTE, m->comm));
+  qsort(all, (size_t)ntot, sizeof(BoltNode), BoltNodeCompareX);
+  PetscCall(PetscFree2(counts, displs));
+  PetscCall(PetscFree(mine));
+  *nnodes = ntot;
+  *nodes  = all;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltContactFindNode(PetscInt n, const BoltNode *nodes, const PetscReal x[3], PetscReal tol, const BoltNode **found)
+{
+  PetscInt lo = 0, hi = n;
+
+  PetscFunctionBeginUser;
+  *found = NULL;
+  while (lo < hi) { /* first node with x >= x0 - tol */
+    PetscInt mid = (lo + hi) / 2;
+    if (nodes[mid].x[0] < x[0] - tol) lo = mid + 1;
+    else hi = mid;
+  }
+  for (PetscInt i = lo; i < n && nodes[i].x[0] <= x[0] + tol; i++) {
+    PetscReal d2 = 0;
+    for (PetscInt d = 0; d < 3; d++) d2 += PetscSqr(nodes[i].x[d] - x[d]);
+    if (d2 <= tol * tol) {
+      *found = &nodes[i];
+      break;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
+{
+  BoltMesh          *m = c->mesh;
+  PetscSF            sf;
+  PetscInt           nleaves, pStart, pEnd, cap = 256;
+  const PetscInt    *leaves;
+  PetscBT            ghost;
+  Vec                coords;
+  PetscSection       cs;
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.contactSetUp, 0, 0, 0, 0));
+  PetscCall(BoltContactFindPairs(c));
+  PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
+  PetscCall(PetscBTCreate(pEnd - pStart, &ghost));
+  PetscCall(DMGetPointSF(m->dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
+  for (PetscInt i = 0; i < nleaves; i++) PetscCall(PetscBTSet(ghost, (leaves ? leaves[i] : i) - pStart));
+  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
+  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(PetscMalloc1(cap, &c->elem));
+  c->nelem       = 0;
+  c->contactDofs = 0;
+  for (PetscInt p = 0; p < c->npairs; p++) {
+    char            na[BOLTROM_NAME_LEN + 16], nb[BOLTROM_NAME_LEN + 16];
+    PetscInt        nb_nodes, nunmatched = 0, partA = -1, partB = -1, nelemLocal = 0, counts[2], nvA, nvB, *vA, *vB;
+    BoltNode       *bnodes = NULL;
+    DMLabel         label;
+    PetscReal       area = 0, bad[3] = {0, 0, 0};
+
+    PetscCall(PetscSNPrintf(na, sizeof(na), "contact_%s_a", c->pairName[p]));
+    PetscCall(PetscSNPrintf(nb, sizeof(nb), "contact_%s_b", c->pairName[p]));
+    PetscCall(BoltContactGatherNodes(c, nb, &nb_nodes, &bnodes));
+    PetscCall(DMGetLabel(m->dm, na, &label));
+    PetscCall(VecGetArrayRead(coords, &x));
+    if (label) {
+      IS              ids;
+      const PetscInt *id;
+      PetscInt        nids;
+
+      PetscCall(DMLabelGetValueIS(label, &ids));
+      PetscCall(ISGetLocalSize(ids, &nids));
+      PetscCall(ISGetIndices(ids, &id));
+      for (PetscInt s = 0; s < nids; s++) {
+        IS              faces;
+        const PetscInt *f;
+        PetscInt        nf;
+
+        PetscCall(DMLabelGetStratumIS(label, id[s], &faces));
+        if (!faces) continue;
+        PetscCall(ISGetLocalSize(faces, &nf));
+        PetscCall(ISGetIndices(faces, &f));
+        for (PetscInt k = 0; k < nf; k++) {
+          PetscInt            face = f[k], *cl = NULL, ncl, nvert = 0, verts[4], nsupp, cell, cverts[24];
+          const PetscInt     *supp;
+          BoltContactElement *e;
+          PetscReal           X[12], cc[3] = {0, 0, 0}, fc[3] = {0, 0, 0}, nrm[3], hmin = PETSC_MAX_REAL, faceArea;
+
+          if (PetscBTLookup(ghost, face - pStart)) continue;
+          PetscCall(DMPlexGetTransitiveClosure(m->dm, face, PETSC_TRUE, &ncl, &cl));
+          for (PetscInt q = 0; q < ncl; q++)
+            if (cl[2 * q] >= m->vStart && cl[2 * q] < m->vEnd && nvert < 4) verts[nvert++] = cl[2 * q];
+          PetscCall(DMPlexRestoreTransitiveClosure(m->dm, face, PETSC_TRUE, &ncl, &cl));
+          PetscCheck(nvert == 4, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Contact side %s: face with %" PetscInt_FMT " vertices; contact sides must be quadrilateral faces of hexahedra", na, nvert);
+          for (PetscInt a = 0; a < 4; a++) {
+            PetscInt off;
+            PetscCall(PetscSectionGetOffset(cs, verts[a], &off));
+            for (PetscInt d = 0; d < 3; d++) X[3 * a + d] = PetscRealPart(x[off + d]);
+          }
+          /* orient the face so its normal points out of part a */
+          PetscCall(DMPlexGetSupportSize(m->dm, face, &nsupp));
+          PetscCall(DMPlexGetSupport(m->dm, face, &supp));
+          PetscCheck(nsupp == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Contact side %s contains an interior face: contact surfaces must be on the boundary of their part, with distinct nodes on each side", na);
+          cell = supp[0];
+          if (partA < 0) partA = m->cellPart[cell - m->cStart];
+          {
+            PetscReal CX[24];
+            PetscCall(BoltMeshCellCoordinates(m, cell, CX));
+            for (PetscInt a = 0; a < 8; a++)
+              for (PetscInt d = 0; d < 3; d++) cc[d] += CX[3 * a + d] / 8;
+            (void)cverts;
+          }
+          for (PetscInt a = 0; a < 4; a++)
+            for (PetscInt d = 0; d < 3; d++) fc[d] += X[3 * a + d] / 4;
+          {
+            PetscReal d1[3], d2[3], dot = 0;
+            for (PetscInt d = 0; d < 3; d++) {
+              d1[d] = X[6 + d] - X[d];
+              d2[d] = X[9 + d] - X[3 + d];
+            }
+            nrm[0] = d1[1] * d2[2] - d1[2] * d2[1];
+            nrm[1] = d1[2] * d2[0] - d1[0] * d2[2];
+            nrm[2] = d1[0] * d2[1] - d1[1] * d2[0];
+            for (PetscInt d = 0; d < 3; d++) dot += nrm[d] * (fc[d] - cc[d]);
+            if (dot < 0) { /* reverse the cycle: 0 3 2 1 */
+              PetscInt  tv = verts[1];
+              PetscReal tx[3];
+              verts[1] = verts[3];
+              verts[3] = tv;
+              for (PetscInt d = 0; d < 3; d++) {
+                tx[d]        = X[3 + d];
+                X[3 + d]     = X[9 + d];
+                X[9 + d]     = tx[d];
+              }
+            }
+          }
+          for (PetscInt a = 0; a < 4; a++) {
+            PetscReal h = 0;
+            for (PetscInt d = 0; d < 3; d++) h += PetscSqr(X[3 * ((a + 1) % 4) + d] - X[3 * a + d]);
+            hmin = PetscMin(hmin, PetscSqrtReal(h));
+          }
+          if (c->nelem == cap) {
+            cap *= 2;
+            PetscCall(PetscRealloc(sizeof(BoltContactElement) * cap, &c->elem));
+          }
+          e       = &c->elem[c->nelem];
+          e->pair = p;
+          PetscCall(PetscArraycpy(e->Xa, X, 12));
+          for (PetscInt a = 0; a < 4; a++) {
+            const BoltNode *bn;
+            PetscCall(BoltMeshVertexDofs(m, verts[a], &e->dofs[3 * a]));
+            PetscCall(BoltContactFindNode(nb_nodes, bnodes, &X[3 * a], c->matchTolerance * hmin, &bn));
+            if (!bn) {
+              if (!nunmatched)
+                for (PetscInt d = 0; d < 3; d++) bad[d] = X[3 * a + d];
+              nunmatched++;
+              for (PetscInt d = 0; d < 3; d++) e->dofs[12 + 3 * a + d] = -1;
+            } else
+              for (PetscInt d = 0; d < 3; d++) e->dofs[12 + 3 * a + d] = bn->dofs[d];
+          }
+          PetscCall(QuadArea(X, &faceArea));
+          area += faceArea;
+          c->nelem++;
+          nelemLocal++;
+        }
+        PetscCall(ISRestoreIndices(faces, &f));
+        PetscCall(ISDestroy(&faces));
+      }
+      PetscCall(ISRestoreIndices(ids, &id));
+      PetscCall(ISDestroy(&ids));
+    }
+    PetscCall(VecRestoreArrayRead(coords, &x));
+    PetscCall(PetscFree(bnodes));
+    {
+      PetscInt  g;
+      PetscReal gbad[3];
+      PetscMPIInt rank, worst;
+      PetscCall(MPIU_Allreduce(&nunmatched, &g, 1, MPIU_INT, MPI_SUM, m->comm));
+      if (g) { /* report one unmatched node, from the lowest rank that has one */
+        PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+        {
+          PetscMPIInt mine = nunmatched ? rank : PETSC_MPI_INT_MAX;
+          PetscCall(MPIU_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MIN, m->comm));
+        }
+        PetscCall(PetscArraycpy(gbad, bad, 3));
+        PetscCallMPI(MPI_Bcast(gbad, 3, MPIU_REAL, worst, m->comm));
+      }
+      PetscCheck(!g, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: %" PetscInt_FMT " node(s) of side a have no partner on side b, e.g. (%g, %g, %g): the two surfaces must be meshed node to node", c->pairName[p], g, (double)(g ? gbad[0] : 0), (double)(g ? gbad[1] : 0), (double)(g ? gbad[2] : 0));
+    }
+    PetscCall(BoltMeshGroupVertices(m, na, PETSC_TRUE, &nvA, &vA));
+    PetscCall(BoltMeshGroupVertices(m, nb, PETSC_TRUE, &nvB, &vB));
+    /* part of side b: from any local cell touching a side-b face */
+    {
+      DMLabel lb;
+      PetscCall(DMGetLabel(m->dm, nb, &lb));
+      if (lb) {
+        IS ids;
+        PetscInt nids;
+        const PetscInt *id;
+        PetscCall(DMLabelGetValueIS(lb, &ids));
+        PetscCall(ISGetLocalSize(ids, &nids));
+        PetscCall(ISGetIndices(ids, &id));
+        for (PetscInt s = 0; s < nids && partB < 0; s++) {
+          IS faces;
+          PetscInt nf;
+          const PetscInt *f;
+          PetscCall(DMLabelGetStratumIS(lb, id[s], &faces));
+          if (!faces) continue;
+          PetscCall(ISGetLocalSize(faces, &nf));
+          PetscCall(ISGetIndices(faces, &f));
+          for (PetscInt k = 0; k < nf && partB < 0; k++) {
+            PetscInt nsupp;
+            const PetscInt *supp;
+            PetscCall(DMPlexGetSupportSize(m->dm, f[k], &nsupp));
+            PetscCall(DMPlexGetSupport(m->dm, f[k], &supp));
+            if (nsupp >= 1 && supp[0] >= m->cStart && supp[0] < m->cEnd) partB = m->cellPart[supp[0] - m->cStart];
+          }
+          PetscCall(ISRestoreIndices(faces, &f));
+          PetscCall(ISDestroy(&faces));
+        }
+        PetscCall(ISRestoreIndices(ids, &id));
+        PetscCall(ISDestroy(&ids));
+      }
+    }
+    counts[0] = nvA;
+    counts[1] = nvB;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, m->comm));
+    PetscCall(PetscFree(vA));
+    PetscCall(PetscFree(vB));
+    PetscCheck(counts[0] == counts[1], m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: side a has %" PetscInt_FMT " nodes but side b has %" PetscInt_FMT ": the two surfaces must cover the same footprint, node to node", c->pairName[p], counts[0], counts[1]);
+    c->contactDofsPerPair[p] = 3 * (counts[0] + counts[1]);
+    c->contactDofs += c->contactDofsPerPair[p];
+    PetscCall(MPIU_Allreduce(&nelemLocal, &c->elementsPerPair[p], 1, MPIU_INT, MPI_SUM, m->comm));
+    PetscCall(MPIU_Allreduce(&area, &c->areaPerPair[p], 1, MPIU_REAL, MPI_SUM, m->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &partA, 1, MPIU_INT, MPI_MAX, m->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &partB, 1, MPIU_INT, MPI_MAX, m->comm));
+    PetscCheck(partA >= 0 && partB >= 0, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: a side has no faces on the mesh's hexahedra", c->pairName[p]);
+    c->pairPart[p][0] = partA;
+    c->pairPart[p][1] = partB;
+    {
+      PetscReal Ea = m->materials.mat[m->partMaterial[partA]].E, Eb = m->materials.mat[m->partMaterial[partB]].E;
+      c->epsN[p] = c->epsT[p] = c->penaltyFactor * PetscMin(Ea, Eb);
+    }
+  }
+  PetscCall(PetscBTDestroy(&ghost));
+  PetscCall(PetscLogEventEnd(boltLog.contactSetUp, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* K + Kc with every contact element active (the tied joint). */
+PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
+{
+  Mat          Kc;
+  PetscInt     m_, n_, M_, N_, ncoo = 576 * c->nelem;
+  PetscInt    *ci, *cj;
+  PetscScalar *cv;
+  PetscReal    Ke[576];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.contactAssembly, 0, 0, 0, 0));
+  PetscCall(MatGetLocalSize(K, &m_, &n_));
+  PetscCall(MatGetSize(K, &M_, &N_));
+  PetscCall(MatCreate(PetscObjectComm((PetscObject)K), &Kc));
+  PetscCall(MatSetSizes(Kc, m_, n_, M_, N_));
+  PetscCall(MatSetType(Kc, MATAIJ));
+  PetscCall(PetscMalloc3(ncoo + 1, &ci, ncoo + 1, &cj, ncoo + 1, &cv));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const BoltContactElement *el = &c->elem[e];
+    PetscCall(QuadPairPenaltyStiffness(el->Xa, c->epsN[el->pair], c->epsT[el->pair], Ke));
+    for (PetscInt i = 0; i < 24; i++)
+      for (PetscInt j = 0; j < 24; j++) {
+        PetscInt k = 576 * e + 24 * i + j;
+        ci[k]      = el->dofs[i];
+        cj[k]      = el->dofs[j];
+        cv[k]      = Ke[24 * i + j];
+      }
+  }
+  PetscCall(MatSetPreallocationCOO(Kc, ncoo, ci, cj));
+  PetscCall(MatSetValuesCOO(Kc, cv, INSERT_VALUES));
+  PetscCall(PetscFree3(ci, cj, cv));
+  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Ktied));
+  PetscCall(MatAXPY(*Ktied, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatSetOption(*Ktied, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(PetscObjectSetName((PetscObject)*Ktied, "K_tied"));
+  PetscCall(MatDestroy(&Kc));
+  PetscCall(PetscLogEventEnd(boltLog.contactAssembly, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactSetView(BoltContactSet *c, PetscViewer viewer)
+{
+  BoltMesh *m = c->mesh;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "Contact: %" PetscInt_FMT " pairs, %" PetscInt_FMT " contact DOFs, penalty %g x E(softer) per metre\n", c->npairs, c->contactDofs, (double)c->penaltyFactor));
+  for (PetscInt p = 0; p < c->npairs; p++)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  pair %-14s %-12s / %-12s %5" PetscInt_FMT " elements, %6" PetscInt_FMT " DOFs, area %.4e m^2, eps %.3e Pa/m\n", c->pairName[p], m->partName[c->pairPart[p][0]], m->partName[c->pairPart[p][1]], c->elementsPerPair[p], c->contactDofsPerPair[p], (double)c->areaPerPair[p], (double)c->epsN[p]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
+{
+  PetscFunctionBeginUser;
+  if (!*cs) PetscFunctionReturn(0);
+  PetscCall(PetscFree((*cs)->elem));
+  PetscCall(PetscFree(*cs));
+  PetscFunctionReturn(0);
+}

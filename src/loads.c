@@ -1,0 +1,278 @@
+/* Load set: the external load pattern (a force at a point group or spread over a face group),
+   the bolt preload (equal and opposite axial forces on two node layers of the stud), and the
+   probe where the response is read. */
+#include "boltrom.h"
+
+PetscErrorCode BoltLoadSetCreate(BoltMesh *mesh, BoltLoadSet **ls)
+{
+  BoltLoadSet *l;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&l));
+  l->mesh = mesh;
+  PetscCall(PetscStrncpy(l->loadGroup, "load_point", sizeof(l->loadGroup)));
+  PetscCall(PetscStrncpy(l->probeGroup, "load_point", sizeof(l->probeGroup)));
+  PetscCall(PetscStrncpy(l->preloadGroup[0], "preload_lower", sizeof(l->preloadGroup[0])));
+  PetscCall(PetscStrncpy(l->preloadGroup[1], "preload_upper", sizeof(l->preloadGroup[1])));
+  l->loadDirection[2] = -1.0;
+  l->loadForce        = 10.0;
+  l->preloadAxis[2]   = 1.0;
+  l->preloadForce     = 20e3;
+  l->probeComponent   = 2;
+  l->probeDof         = -1;
+  *ls                 = l;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *l)
+{
+  PetscInt  n3 = 3;
+  PetscReal nrm;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(l->mesh->comm, NULL, "Loads", "boltrom");
+  PetscCall(PetscOptionsString("-load_group", "Physical group (point or surface) that carries the external load", NULL, l->loadGroup, l->loadGroup, sizeof(l->loadGroup), NULL));
+  PetscCall(PetscOptionsRealArray("-load_direction", "Direction of the external load (normalised)", NULL, l->loadDirection, &n3, NULL));
+  PetscCall(PetscOptionsReal("-load_force", "Total external force [N]", NULL, l->loadForce, &l->loadForce, NULL));
+  PetscCall(PetscOptionsReal("-preload_force", "Bolt preload [N]", NULL, l->preloadForce, &l->preloadForce, NULL));
+  n3 = 3;
+  PetscCall(PetscOptionsRealArray("-preload_axis", "Bolt axis, from the lower to the upper preload layer", NULL, l->preloadAxis, &n3, NULL));
+  PetscCall(PetscOptionsString("-probe_group", "Point group where the response is probed", NULL, l->probeGroup, l->probeGroup, sizeof(l->probeGroup), NULL));
+  PetscCall(PetscOptionsInt("-probe_component", "Displacement component of the probe: 0 x, 1 y, 2 z", NULL, l->probeComponent, &l->probeComponent, NULL));
+  PetscOptionsEnd();
+  nrm = PetscSqrtReal(PetscSqr(l->loadDirection[0]) + PetscSqr(l->loadDirection[1]) + PetscSqr(l->loadDirection[2]));
+  PetscCheck(nrm > 0, l->mesh->comm, PETSC_ERR_USER_INPUT, "-load_direction must be a nonzero vector");
+  for (PetscInt d = 0; d < 3; d++) l->loadDirection[d] /= nrm;
+  nrm = PetscSqrtReal(PetscSqr(l->preloadAxis[0]) + PetscSqr(l->preloadAxis[1]) + PetscSqr(l->preloadAxis[2]));
+  PetscCheck(nrm > 0, l->mesh->comm, PETSC_ERR_USER_INPUT, "-preload_axis must be a nonzero vector");
+  for (PetscInt d = 0; d < 3; d++) l->preloadAxis[d] /= nrm;
+  PetscCheck(l->probeComponent >= 0 && l->probeComponent < 3, l->mesh->comm, PETSC_ERR_USER_INPUT, "-probe_component must be 0, 1 or 2");
+  PetscFunctionReturn(0);
+}
+
+/* Equal shares of `force` along `dir` on the owned vertices of a group (a point load when the
+   group is one node). Returns the global node count. */
+static PetscErrorCode BoltLoadSpread(BoltMesh *m, const char group[], const PetscReal dir[3], PetscReal force, Vec f, PetscInt *nglobal)
+{
+  PetscInt nv, *verts, n;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltMeshGroupVertices(m, group, PETSC_TRUE, &nv, &verts));
+  PetscCall(MPIU_Allreduce(&nv, &n, 1, MPIU_INT, MPI_SUM, m->comm));
+  PetscCheck(n > 0, m->comm, PETSC_ERR_USER_INPUT, "Load group '%s' is not in mesh %s (or has no nodes): add the physical group or choose another with -load_group / -preload_*", group, m->filename);
+  for (PetscInt i = 0; i < nv; i++) {
+    PetscInt    idx[3];
+    PetscScalar v[3];
+    PetscCall(BoltMeshVertexDofs(m, verts[i], idx));
+    for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] / n;
+    PetscCall(VecSetValues(f, 3, idx, v, ADD_VALUES));
+  }
+  PetscCall(PetscFree(verts));
+  PetscCall(VecAssemblyBegin(f));
+  PetscCall(VecAssemblyEnd(f));
+  *nglobal = n;
+  PetscFunctionReturn(0);
+}
+
+/* Consistent share of a total force over a face group: each face's area in quarters. */
+static PetscErrorCode BoltLoadFaces(BoltMesh *m, DMLabel label, const PetscReal dir[3], PetscReal force, Vec f)
+{
+  IS                 ids;
+  const PetscInt    *id;
+  PetscInt           nids, pStart, pEnd;
+  PetscReal          atot = 0, aglob;
+  PetscInt           nfaces = 0, cap = 64, *faceVerts;
+  PetscReal         *faceArea;
+  Vec                coords;
+  PetscSection       cs;
+  const PetscScalar *x;
+  PetscSF            sf;
+  PetscInt           nleaves;
+  const PetscInt    *leaves;
+  PetscBT            ghost;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
+  PetscCall(PetscBTCreate(pEnd - pStart, &ghost));
+  PetscCall(DMGetPointSF(m->dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
+  for (PetscInt i = 0; i < nleaves; i++) PetscCall(PetscBTSet(ghost, (leaves ? leaves[i] : i) - pStart));
+  PetscCall(PetscMalloc2(4 * cap, &faceVerts, cap, &faceArea));
+  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
+  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(VecGetArrayRead(coords, &x));
+  PetscCall(DMLabelGetValueIS(label, &ids));
+  PetscCall(ISGetLocalSize(ids, &nids));
+  PetscCall(ISGetIndices(ids, &id));
+  for (PetscInt s = 0; s < nids; s++) {
+    IS              pts;
+    const PetscInt *p;
+    PetscInt        np;
+    PetscCall(DMLabelGetStratumIS(label, id[s], &pts));
+    if (!pts) continue;
+    PetscCall(ISGetLocalSize(pts, &np));
+    PetscCall(ISGetIndices(pts, &p));
+    for (PetscInt k = 0; k < np; k++) {
+      PetscInt *cl = NULL, ncl, nv = 0, vv[4];
+      PetscReal X[12];
+      if (PetscBTLookup(ghost, p[k] - pStart)) continue;
+      PetscCall(DMPlexGetTransitiveClosure(m->dm, p[k], PETSC_TRUE, &ncl, &cl));
+      for (PetscInt q = 0; q < ncl; q++)
+        if (cl[2 * q] >= m->vStart && cl[2 * q] < m->vEnd && nv < 4) vv[nv++] = cl[2 * q];
+      PetscCall(DMPlexRestoreTransitiveClosure(m->dm, p[k], PETSC_TRUE, &ncl, &cl));
+      if (nv != 4) continue;
+      for (PetscInt a = 0; a < 4; a++) {
+        PetscInt off;
+        PetscCall(PetscSectionGetOffset(cs, vv[a], &off));
+        for (PetscInt d = 0; d < 3; d++) X[3 * a + d] = PetscRealPart(x[off + d]);
+      }
+      if (nfaces == cap) {
+        cap *= 2;
+        PetscCall(PetscRealloc(sizeof(PetscInt) * 4 * cap, &faceVerts));
+        PetscCall(PetscRealloc(sizeof(PetscReal) * cap, &faceArea));
+      }
+      PetscCall(QuadArea(X, &faceArea[nfaces]));
+      for (PetscInt a = 0; a < 4; a++) faceVerts[4 * nfaces + a] = vv[a];
+      atot += faceArea[nfaces++];
+    }
+    PetscCall(ISRestoreIndices(pts, &p));
+    PetscCall(ISDestroy(&pts));
+  }
+  PetscCall(ISRestoreIndices(ids, &id));
+  PetscCall(ISDestroy(&ids));
+  PetscCall(VecRestoreArrayRead(coords, &x));
+  PetscCall(MPIU_Allreduce(&atot, &aglob, 1, MPIU_REAL, MPI_SUM, m->comm));
+  for (PetscInt i = 0; i < nfaces; i++)
+    for (PetscInt a = 0; a < 4; a++) {
+      PetscInt    idx[3];
+      PetscScalar v[3];
+      PetscCall(BoltMeshVertexDofs(m, faceVerts[4 * i + a], idx));
+      for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] * faceArea[i] / (4 * aglob);
+      PetscCall(VecSetValues(f, 3, idx, v, ADD_VALUES));
+    }
+  PetscCall(VecAssemblyBegin(f));
+  PetscCall(VecAssemblyEnd(f));
+  PetscCall(PetscFree2(faceVerts, faceArea));
+  PetscCall(PetscBTDestroy(&ghost));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
+{
+  BoltMesh *m = l->mesh;
+  PetscInt  n, hasFaces = 0, nv, *verts;
+  DMLabel   label;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.loads, 0, 0, 0, 0));
+  PetscCall(VecDuplicate(layout, &l->load));
+  PetscCall(VecDuplicate(layout, &l->preload));
+  PetscCall(VecZeroEntries(l->load));
+  PetscCall(VecZeroEntries(l->preload));
+  PetscCall(PetscObjectSetName((PetscObject)l->load, "load"));
+  PetscCall(PetscObjectSetName((PetscObject)l->preload, "preload"));
+  /* a surface group spreads the force by area; a point group takes it whole */
+  PetscCall(DMGetLabel(m->dm, l->loadGroup, &label));
+  if (label) {
+    PetscInt fStart, fEnd;
+    IS       ids;
+    PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
+    PetscCall(DMLabelGetValueIS(label, &ids));
+    if (ids) {
+      PetscInt nids;
+      const PetscInt *id;
+      PetscCall(ISGetLocalSize(ids, &nids));
+      PetscCall(ISGetIndices(ids, &id));
+      for (PetscInt s = 0; s < nids; s++) {
+        IS pts;
+        PetscCall(DMLabelGetStratumIS(label, id[s], &pts));
+        if (pts) {
+          PetscInt np;
+          const PetscInt *p;
+          PetscCall(ISGetLocalSize(pts, &np));
+          PetscCall(ISGetIndices(pts, &p));
+          for (PetscInt k = 0; k < np; k++)
+            if (p[k] >= fStart && p[k] < fEnd) hasFaces = 1;
+          PetscCall(ISRestoreIndices(pts, &p));
+          PetscCall(ISDestroy(&pts));
+        }
+      }
+      PetscCall(ISRestoreIndices(ids, &id));
+      PetscCall(ISDestroy(&ids));
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hasFaces, 1, MPIU_INT, MPI_MAX, m->comm));
+  if (hasFaces) PetscCall(BoltLoadFaces(m, label, l->loadDirection, l->loadForce, l->load));
+  else PetscCall(BoltLoadSpread(m, l->loadGroup, l->loadDirection, l->loadForce, l->load, &n));
+  /* preload: pulls the two layers together, so the stud between them is shortened */
+  {
+    PetscBool hasLow, hasUp;
+    PetscReal down[3];
+    PetscCall(BoltMeshHasGroup(m, l->preloadGroup[0], &hasLow));
+    PetscCall(BoltMeshHasGroup(m, l->preloadGroup[1], &hasUp));
+    l->hasPreload = (hasLow && hasUp) ? PETSC_TRUE : PETSC_FALSE;
+    if (l->hasPreload) {
+      for (PetscInt d = 0; d < 3; d++) down[d] = -l->preloadAxis[d];
+      PetscCall(BoltLoadSpread(m, l->preloadGroup[0], l->preloadAxis, l->preloadForce, l->preload, &n));
+      PetscCall(BoltLoadSpread(m, l->preloadGroup[1], down, l->preloadForce, l->preload, &n));
+    }
+  }
+  /* probe */
+  PetscCall(BoltMeshGroupVertices(m, l->probeGroup, PETSC_TRUE, &nv, &verts));
+  PetscCall(MPIU_Allreduce(&nv, &n, 1, MPIU_INT, MPI_SUM, m->comm));
+  PetscCheck(n >= 1, m->comm, PETSC_ERR_USER_INPUT, "Probe group '%s' is not in mesh %s: add the point group or set -probe_group", l->probeGroup, m->filename);
+  l->probeDof = -1;
+  for (PetscInt d = 0; d < 3; d++) l->probeCoord[d] = 0;
+  if (nv > 0) {
+    PetscInt           idx[3], off;
+    Vec                coords;
+    PetscSection       cs;
+    const PetscScalar *x;
+    PetscCall(BoltMeshVertexDofs(m, verts[0], idx));
+    l->probeDof = idx[l->probeComponent];
+    PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
+    PetscCall(DMGetCoordinateSection(m->dm, &cs));
+    PetscCall(VecGetArrayRead(coords, &x));
+    PetscCall(PetscSectionGetOffset(cs, verts[0], &off));
+    for (PetscInt d = 0; d < 3; d++) l->probeCoord[d] = PetscRealPart(x[off + d]);
+    PetscCall(VecRestoreArrayRead(coords, &x));
+  }
+  PetscCall(PetscFree(verts));
+  /* a point group's vertex is owned by one rank: the others contribute zeros */
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, l->probeCoord, 3, MPIU_REAL, MPI_SUM, m->comm));
+  PetscCall(PetscLogEventEnd(boltLog.loads, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The probe value, known on every rank. */
+PetscErrorCode BoltLoadSetProbe(BoltLoadSet *l, Vec u, PetscReal *value)
+{
+  PetscReal          v = 0;
+  PetscInt           rstart;
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(u, &rstart, NULL));
+  PetscCall(VecGetArrayRead(u, &a));
+  if (l->probeDof >= 0) v = PetscRealPart(a[l->probeDof - rstart]);
+  PetscCall(VecRestoreArrayRead(u, &a));
+  PetscCall(MPIU_Allreduce(&v, value, 1, MPIU_REAL, MPI_SUM, l->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltLoadSetView(BoltLoadSet *l, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "Loads: %g N along (%g, %g, %g) at '%s'; preload %s%g N; probe u_%c at '%s' (%g, %g, %g)\n", (double)l->loadForce, (double)l->loadDirection[0], (double)l->loadDirection[1], (double)l->loadDirection[2], l->loadGroup, l->hasPreload ? "" : "(no preload layers in mesh) ", (double)l->preloadForce, "xyz"[l->probeComponent], l->probeGroup, (double)l->probeCoord[0], (double)l->probeCoord[1], (double)l->probeCoord[2]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **ls)
+{
+  PetscFunctionBeginUser;
+  if (!*ls) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&(*ls)->load));
+  PetscCall(VecDestroy(&(*ls)->preload));
+  PetscCall(PetscFree(*ls));
+  PetscFunctionReturn(0);
+}

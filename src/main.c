@@ -1,0 +1,333 @@
+static const char help[] = "boltrom: vibration of bolted joints with contact, full and reduced order models.\n"
+                           "Usage: mpiexec -n 2 bin/boltrom -options_file inputs/tied-joint.yaml [-help] [-log_view]\n"
+                           "This stage builds the model, solves the tied joint statically and finds its eigenfrequencies.\n\n";
+
+#include "boltrom.h"
+
+typedef struct {
+  char      outputDir[PETSC_MAX_PATH_LEN];
+  char      outputName[BOLTROM_NAME_LEN];
+  char      summary[PETSC_MAX_PATH_LEN];
+  PetscBool staticSolve, verifyFields, checkRigid, writeOutput;
+  PetscInt  nev;
+} BoltRunOptions;
+
+static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(o->outputDir, "output", sizeof(o->outputDir)));
+  PetscCall(PetscStrncpy(o->outputName, "joint", sizeof(o->outputName)));
+  o->summary[0]   = '\0';
+  o->staticSolve  = PETSC_TRUE;
+  o->verifyFields = PETSC_FALSE;
+  o->checkRigid   = PETSC_FALSE;
+  o->writeOutput  = PETSC_TRUE;
+  o->nev          = 3;
+  PetscOptionsBegin(comm, NULL, "Run", "boltrom");
+  PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
+  PetscCall(PetscOptionsString("-output_name", "Base name of the HDF5/XDMF files", NULL, o->outputName, o->outputName, sizeof(o->outputName), NULL));
+  PetscCall(PetscOptionsBool("-output", "Write the HDF5/XDMF results", NULL, o->writeOutput, &o->writeOutput, NULL));
+  PetscCall(PetscOptionsString("-summary", "Write a JSON summary to this file (keys in the README)", NULL, o->summary, o->summary, sizeof(o->summary), NULL));
+  PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
+  PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
+  PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));
+  PetscCall(PetscOptionsBool("-check_rigid", "Check K r = 0 for the six rigid motions of every part (use with -clamp false)", NULL, o->checkRigid, &o->checkRigid, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->nev >= 0 && o->nev <= 100, comm, PETSC_ERR_USER_INPUT, "-modal_nev must be in [0, 100] (got %" PetscInt_FMT ")", o->nev);
+  PetscFunctionReturn(0);
+}
+
+/* Options that nobody asked for are spelling mistakes or leftovers: refuse them. */
+static PetscErrorCode BoltCheckUnusedOptions(MPI_Comm comm)
+{
+  PetscInt n;
+  char   **names, **values;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  if (n) {
+    char msg[1024] = "";
+    for (PetscInt i = 0; i < n && i < 8; i++) {
+      PetscCall(PetscStrlcat(msg, i ? ", -" : "-", sizeof(msg)));
+      PetscCall(PetscStrlcat(msg, names[i], sizeof(msg)));
+    }
+    PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "Unknown or unused option(s) %s: check the spelling against bin/boltrom -help", msg);
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscFunctionReturn(0);
+}
+
+/* A smooth, fixed vector field for operator checks. */
+static PetscErrorCode SmoothField(const PetscReal X[3], PetscInt part, PetscReal u[3], void *ctx)
+{
+  u[0] = PetscSinReal(97 * X[0] + 31 * X[1]) + 0.1 * part;
+  u[1] = PetscCosReal(71 * X[1] - 23 * X[2]);
+  u[2] = PetscSinReal(53 * X[2] + 41 * X[0]);
+  return 0;
+}
+
+typedef struct {
+  PetscInt  mode;
+  PetscReal center[3];
+} RigidCtx;
+
+static PetscErrorCode RigidMotion(const PetscReal X[3], PetscInt part, PetscReal u[3], void *ctx)
+{
+  RigidCtx *r = (RigidCtx *)ctx;
+  PetscReal y[3];
+
+  for (PetscInt d = 0; d < 3; d++) {
+    y[d] = X[d] - r->center[d];
+    u[d] = 0;
+  }
+  if (r->mode < 3) u[r->mode] = 1.0;
+  else { /* rotation about axis mode-3: omega x y */
+    PetscReal w[3] = {0, 0, 0};
+    w[r->mode - 3] = 1.0;
+    u[0]           = w[1] * y[2] - w[2] * y[1];
+    u[1]           = w[2] * y[0] - w[0] * y[2];
+    u[2]           = w[0] * y[1] - w[1] * y[0];
+  }
+  return 0;
+}
+
+static PetscErrorCode BoltRun(void)
+{
+  MPI_Comm        comm = PETSC_COMM_WORLD;
+  BoltRunOptions  opt;
+  BoltMesh       *mesh;
+  BoltAssembler  *asmb;
+  BoltContactSet *contact;
+  BoltLoadSet    *loads;
+  Mat             Ktied = NULL;
+  Vec             u = NULL, x = NULL, Kx = NULL, Mx = NULL;
+  PetscReal       probe = 0, freq[100], rigid[BOLTROM_MAX_PARTS];
+  PetscInt        nconv = 0;
+  PetscLogDouble  t0, tSetUp, tStatic = 0, tModal = 0;
+  PetscViewer     out = PETSC_VIEWER_STDOUT_WORLD;
+  PetscMPIInt     size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(BoltLogRegister());
+  PetscCall(PetscTime(&t0));
+  PetscCall(BoltRunOptionsSetFromOptions(comm, &opt));
+  PetscCall(PetscLogStagePush(boltLog.stageSetUp));
+  PetscCall(BoltMeshCreate(comm, &mesh));
+  PetscCall(BoltMeshSetFromOptions(mesh));
+  PetscCall(BoltAssemblerCreate(mesh, &asmb));
+  PetscCall(BoltAssemblerSetFromOptions(asmb));
+  PetscCall(BoltContactSetCreate(mesh, &contact));
+  PetscCall(BoltContactSetSetFromOptions(contact));
+  PetscCall(BoltLoadSetCreate(mesh, &loads));
+  PetscCall(BoltLoadSetSetFromOptions(loads));
+  if (opt.summary[0]) { /* fail now, not after the solve, if the summary cannot be written */
+    char      dir[PETSC_MAX_PATH_LEN];
+    char     *slash;
+    PetscBool ok = PETSC_TRUE;
+    PetscCall(PetscStrncpy(dir, opt.summary, sizeof(dir)));
+    PetscCall(PetscStrrchr(dir, '/', &slash));
+    if (slash != dir) {
+      slash[-1] = '\0';
+      PetscCall(BoltMakeDir(comm, dir));
+    }
+    (void)ok;
+  }
+  PetscCall(BoltMeshSetUp(mesh));
+  PetscCall(BoltAssemblerSetUp(asmb));
+  PetscCall(BoltContactSetSetUp(contact));
+  PetscCall(MatCreateVecs(asmb->K, &u, NULL));
+  PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
+  PetscCall(BoltLoadSetSetUp(loads, u));
+  PetscCall(PetscLogStagePop());
+  PetscCall(BoltMeshView(mesh, out));
+  PetscCall(BoltAssemblerView(asmb, out));
+  PetscCall(BoltContactSetView(contact, out));
+  PetscCall(BoltLoadSetView(loads, out));
+  {
+    PetscLogDouble t;
+    PetscCall(PetscTime(&t));
+    tSetUp = t - t0;
+  }
+
+  /* the tied joint: every contact element active with its penalty stiffness */
+  if (contact->npairs) PetscCall(BoltContactSetAssembleTied(contact, asmb->K, &Ktied));
+  else {
+    PetscCall(PetscObjectReference((PetscObject)asmb->K));
+    Ktied = asmb->K;
+  }
+  if (opt.staticSolve) {
+    PetscLogDouble ts, te;
+    PetscCall(PetscLogStagePush(boltLog.stageStatic));
+    PetscCall(PetscTime(&ts));
+    PetscCall(BoltStaticSolve(Ktied, loads->load, u, "static_"));
+    PetscCall(PetscTime(&te));
+    tStatic = te - ts;
+    PetscCall(BoltLoadSetProbe(loads, u, &probe));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscPrintf(comm, "Static (tied): probe u_%c at '%s' = %.10e m under %g N (%.2f s)\n", "xyz"[loads->probeComponent], loads->probeGroup, (double)probe, (double)loads->loadForce, (double)tStatic));
+  }
+  if (opt.nev > 0) {
+    PetscLogDouble ts, te;
+    PetscCall(PetscLogStagePush(boltLog.stageModal));
+    PetscCall(PetscTime(&ts));
+    PetscCall(BoltModalSolve(Ktied, asmb->M, opt.nev, "modal_", &nconv, freq));
+    PetscCall(PetscTime(&te));
+    tModal = te - ts;
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscPrintf(comm, "Eigenfrequencies (tied) [Hz]:"));
+    for (PetscInt i = 0; i < nconv; i++) PetscCall(PetscPrintf(comm, " %.6f", (double)freq[i]));
+    PetscCall(PetscPrintf(comm, " (%.2f s)\n", (double)tModal));
+  }
+  if (opt.verifyFields) {
+    PetscCall(VecDuplicate(u, &x));
+    PetscCall(VecDuplicate(u, &Kx));
+    PetscCall(VecDuplicate(u, &Mx));
+    PetscCall(BoltMeshFillVertexField(mesh, SmoothField, NULL, x));
+    PetscCall(MatMult(Ktied, x, Kx));
+    PetscCall(MatMult(asmb->M, x, Mx));
+  }
+  if (opt.checkRigid) {
+    PetscCheck(!mesh->clamp, comm, PETSC_ERR_USER_INPUT, "-check_rigid needs the free-free model: add -clamp false");
+    PetscCall(VecDuplicate(u, &x));
+    PetscCall(VecDuplicate(u, &Kx));
+    for (PetscInt p = 0; p < mesh->nparts; p++) {
+      Mat       Kp;
+      PetscReal knorm;
+      rigid[p] = 0;
+      PetscCall(BoltAssemblerPartStiffness(asmb, p, &Kp));
+      PetscCall(MatNorm(Kp, NORM_FROBENIUS, &knorm));
+      for (PetscInt k = 0; k < 6; k++) {
+        RigidCtx  rc = {k, {0.1, 0.0, 0.01}};
+        PetscReal rn, yn;
+        PetscCall(VecZeroEntries(x));
+        PetscCall(BoltMeshFillVertexField(mesh, RigidMotion, &rc, x));
+        PetscCall(MatMult(Kp, x, Kx));
+        PetscCall(VecNorm(x, NORM_2, &rn));
+        PetscCall(VecNorm(Kx, NORM_2, &yn));
+        rigid[p] = PetscMax(rigid[p], yn / (knorm * rn));
+      }
+      PetscCall(MatDestroy(&Kp));
+      PetscCall(PetscPrintf(comm, "Rigid motions of part %s: max |K r| / (|K| |r|) = %.3e\n", mesh->partName[p], (double)rigid[p]));
+    }
+  }
+  /* every option must have been used before anything is written */
+  PetscCall(BoltCheckUnusedOptions(comm));
+
+  PetscCall(PetscLogStagePush(boltLog.stageOutput));
+  if (opt.writeOutput) {
+    BoltOutput h5;
+    PetscCall(BoltOutputOpen(mesh, opt.outputDir, opt.outputName, &h5));
+    if (opt.staticSolve) PetscCall(BoltOutputVertexField(&h5, mesh, u, "displacement"));
+    PetscCall(BoltOutputVertexField(&h5, mesh, loads->load, "load"));
+    if (loads->hasPreload) PetscCall(BoltOutputVertexField(&h5, mesh, loads->preload, "preload"));
+    if (opt.verifyFields) {
+      PetscCall(BoltOutputVertexField(&h5, mesh, x, "x"));
+      PetscCall(BoltOutputVertexField(&h5, mesh, Kx, "Kx"));
+      PetscCall(BoltOutputVertexField(&h5, mesh, Mx, "Mx"));
+    }
+    PetscCall(BoltOutputClose(&h5, mesh));
+    PetscCall(PetscPrintf(comm, "Wrote %s/%s.h5 and %s/%s.xmf (open the .xmf in ParaView)\n", opt.outputDir, opt.outputName, opt.outputDir, opt.outputName));
+  }
+  if (opt.summary[0]) {
+    BoltJSON j;
+    PetscCall(BoltJSONOpen(comm, opt.summary, &j));
+    PetscCall(BoltJSONString(&j, "mesh", mesh->filename));
+    PetscCall(BoltJSONInt(&j, "ranks", size));
+    PetscCall(BoltJSONString(&j, "element", mesh->formulation == HEX8_FULL ? "full" : "incompatible"));
+    PetscCall(BoltJSONString(&j, "partitioner", mesh->partitioner));
+    PetscCall(BoltJSONInt(&j, "edge_cut", mesh->edgeCut));
+    PetscCall(BoltJSONInt(&j, "nodes", mesh->nverticesGlobal));
+    PetscCall(BoltJSONInt(&j, "elements", mesh->ncellsGlobal));
+    PetscCall(BoltJSONInt(&j, "dofs", 3 * mesh->nverticesGlobal));
+    PetscCall(BoltJSONInt(&j, "free_dofs", mesh->ndofsFree));
+    PetscCall(BoltJSONInt(&j, "contact_dofs", contact->contactDofs));
+    PetscCall(BoltJSONBeginObject(&j, "contact_dofs_per_pair"));
+    for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONInt(&j, contact->pairName[p], contact->contactDofsPerPair[p]));
+    PetscCall(BoltJSONEndObject(&j));
+    PetscCall(BoltJSONBeginObject(&j, "contact_elements_per_pair"));
+    for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONInt(&j, contact->pairName[p], contact->elementsPerPair[p]));
+    PetscCall(BoltJSONEndObject(&j));
+    PetscCall(BoltJSONBeginObject(&j, "contact_area_per_pair"));
+    for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONReal(&j, contact->pairName[p], contact->areaPerPair[p]));
+    PetscCall(BoltJSONEndObject(&j));
+    PetscCall(BoltJSONBeginObject(&j, "elements_per_part"));
+    for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONInt(&j, mesh->partName[p], asmb->elementsPerPart[p]));
+    PetscCall(BoltJSONEndObject(&j));
+    PetscCall(BoltJSONBeginObject(&j, "mass_per_part"));
+    for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONReal(&j, mesh->partName[p], asmb->massPerPart[p]));
+    PetscCall(BoltJSONEndObject(&j));
+    PetscCall(BoltJSONBeginObject(&j, "volume_per_part"));
+    for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONReal(&j, mesh->partName[p], asmb->volumePerPart[p]));
+    PetscCall(BoltJSONEndObject(&j));
+    PetscCall(BoltJSONBeginObject(&j, "material_per_part"));
+    for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONString(&j, mesh->partName[p], mesh->materials.mat[mesh->partMaterial[p]].name));
+    PetscCall(BoltJSONEndObject(&j));
+    if (opt.staticSolve) {
+      PetscCall(BoltJSONBeginObject(&j, "static"));
+      PetscCall(BoltJSONReal(&j, "load_force", loads->loadForce));
+      PetscCall(BoltJSONString(&j, "probe_group", loads->probeGroup));
+      PetscCall(BoltJSONInt(&j, "probe_component", loads->probeComponent));
+      PetscCall(BoltJSONRealArray(&j, "probe_coordinates", 3, loads->probeCoord));
+      PetscCall(BoltJSONReal(&j, "probe_displacement", probe));
+      PetscCall(BoltJSONReal(&j, "seconds", tStatic));
+      PetscCall(BoltJSONEndObject(&j));
+    }
+    if (opt.nev > 0) {
+      PetscCall(BoltJSONBeginObject(&j, "modal"));
+      PetscCall(BoltJSONRealArray(&j, "frequencies_hz", nconv, freq));
+      PetscCall(BoltJSONReal(&j, "seconds", tModal));
+      PetscCall(BoltJSONEndObject(&j));
+    }
+    if (opt.checkRigid) {
+      PetscCall(BoltJSONBeginObject(&j, "rigid_residual_per_part"));
+      for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONReal(&j, mesh->partName[p], rigid[p]));
+      PetscCall(BoltJSONEndObject(&j));
+    }
+    PetscCall(BoltJSONReal(&j, "setup_s", tSetUp));
+    PetscCall(BoltJSONClose(&j));
+  }
+  PetscCall(PetscLogStagePop());
+
+  PetscCall(VecDestroy(&u));
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&Kx));
+  PetscCall(VecDestroy(&Mx));
+  PetscCall(MatDestroy(&Ktied));
+  PetscCall(BoltLoadSetDestroy(&loads));
+  PetscCall(BoltContactSetDestroy(&contact));
+  PetscCall(BoltAssemblerDestroy(&asmb));
+  PetscCall(BoltMeshDestroy(&mesh));
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  PetscErrorCode ierr;
+  PetscBool      traceback = PETSC_FALSE;
+  PetscMPIInt    rank, size;
+
+  PetscCall(SlepcInitialize(&argc, &argv, NULL, help));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-traceback", &traceback, NULL));
+  /* Errors come back as one line naming the problem; -traceback shows PETSc's full trace. */
+  if (!traceback) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = BoltRun();
+  if (!traceback) PetscCall(PetscPopErrorHandler());
+  if (ierr) {
+    const char *text;
+    char       *specific = NULL;
+    PetscErrorMessage(ierr, &text, &specific);
+    if (rank == 0 || size == 1) fprintf(stderr, "boltrom: error: %s\n", specific && specific[0] ? specific : text);
+    else fprintf(stderr, "boltrom: error on rank %d: %s\n", rank, specific && specific[0] ? specific : text);
+    fflush(stderr);
+    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, (int)ierr);
+    PetscOptionsClear(NULL); /* no -options_left report on an error */
+    SlepcFinalize();
+    return (int)ierr;
+  }
+  PetscCall(SlepcFinalize());
+  return 0;
+}

@@ -1,0 +1,581 @@
+/* The mesh: a gmsh file read into DMPlex, checked, partitioned and distributed, with the
+   parts (volume groups), their materials and the DOF layout (3 per vertex, clamp removed). */
+#include "boltrom.h"
+#include <metis.h>
+
+static const char *defaultPartMaterials = "plate1:aluminium,plate2:aluminium,plate:aluminium,bolt:steel,washer_head:steel,washer_nut:steel,nut:steel,block:steel,upper:steel,lower:steel";
+
+PetscErrorCode BoltMeshCreate(MPI_Comm comm, BoltMesh **mesh)
+{
+  BoltMesh *m;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&m));
+  m->comm  = comm;
+  m->clamp = PETSC_TRUE;
+  PetscCall(PetscStrncpy(m->clampGroup, "clamp", sizeof(m->clampGroup)));
+  PetscCall(PetscStrncpy(m->partitioner, "metis", sizeof(m->partitioner)));
+  PetscCall(PetscStrncpy(m->partMaterialMap, defaultPartMaterials, sizeof(m->partMaterialMap)));
+  m->formulation = HEX8_INCOMPATIBLE;
+  *mesh          = m;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshSetFromOptions(BoltMesh *m)
+{
+  const char *forms[] = {"full", "incompatible", "Hex8Formulation", "HEX8_", NULL};
+  PetscBool   set;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(m->comm, NULL, "Mesh and model", "boltrom");
+  PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (.msh) following the physical-group convention of the README", NULL, m->filename, m->filename, sizeof(m->filename), &set));
+  PetscCall(PetscOptionsString("-clamp_group", "Physical group whose nodes are fully clamped", NULL, m->clampGroup, m->clampGroup, sizeof(m->clampGroup), NULL));
+  PetscCall(PetscOptionsBool("-clamp", "Remove the clamp group's DOFs (false: free-free model)", NULL, m->clamp, &m->clamp, NULL));
+  PetscCall(PetscOptionsString("-partitioner", "Mesh partitioner: metis (boltrom's, through a shell partitioner) or a PETSc partitioner type (ptscotch, simple, ...)", NULL, m->partitioner, m->partitioner, sizeof(m->partitioner), NULL));
+  PetscCall(PetscOptionsString("-part_material", "Material of each part, as part:material pairs separated by commas", NULL, m->partMaterialMap, m->partMaterialMap, sizeof(m->partMaterialMap), NULL));
+  PetscCall(PetscOptionsEnum("-element", "Hexahedron formulation: full (2x2x2 Gauss) or incompatible (Wilson-Taylor modes, no bending locking)", "Hex8Formulation", forms, (PetscEnum)m->formulation, (PetscEnum *)&m->formulation, NULL));
+  PetscOptionsEnd();
+  PetscCall(BoltMaterialTableSetFromOptions(m->comm, &m->materials));
+  PetscFunctionReturn(0);
+}
+
+/* Part names and tags are read on rank 0 (which holds the whole serial mesh) and broadcast. */
+static PetscErrorCode BoltMeshFindParts(BoltMesh *m, DM dm)
+{
+  PetscMPIInt rank;
+  PetscInt    nlabels, cStart, cEnd;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+  m->nparts = 0;
+  if (rank == 0) {
+    PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+    PetscCall(DMGetNumLabels(dm, &nlabels));
+    for (PetscInt l = 0; l < nlabels; l++) {
+      const char     *name;
+      DMLabel         label;
+      IS              ids;
+      const PetscInt *id;
+      PetscInt        nids, pStart, pEnd, ncells = 0, tag = -1;
+
+      PetscCall(DMGetLabelName(dm, l, &name));
+      PetscCall(DMGetLabelByNum(dm, l, &label));
+      PetscCall(DMLabelGetValueIS(label, &ids));
+      PetscCall(ISGetLocalSize(ids, &nids));
+      PetscCall(ISGetIndices(ids, &id));
+      for (PetscInt i = 0; i < nids; i++) {
+        IS              pts;
+        const PetscInt *p;
+        PetscInt        np;
+
+        PetscCall(DMLabelGetStratumIS(label, id[i], &pts));
+        if (!pts) continue;
+        PetscCall(ISGetLocalSize(pts, &np));
+        PetscCall(ISGetIndices(pts, &p));
+        for (PetscInt j = 0; j < np; j++)
+          if (p[j] >= cStart && p[j] < cEnd) {
+            ncells++;
+            tag = id[i];
+          }
+        PetscCall(ISRestoreIndices(pts, &p));
+        PetscCall(ISDestroy(&pts));
+      }
+      PetscCall(ISRestoreIndices(ids, &id));
+      PetscCall(ISDestroy(&ids));
+      (void)pStart;
+      (void)pEnd;
+      if (!ncells) continue;
+      {
+        PetscBool skip;
+        PetscCall(PetscStrcmp(name, "celltype", &skip));
+        if (!skip) PetscCall(PetscStrcmp(name, "depth", &skip));
+        if (skip) continue;
+      }
+      PetscCheck(m->nparts < BOLTROM_MAX_PARTS, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Mesh %s has more than %d volume groups", m->filename, BOLTROM_MAX_PARTS);
+      PetscCall(PetscStrncpy(m->partName[m->nparts], name, BOLTROM_NAME_LEN));
+      m->partTag[m->nparts] = tag;
+      m->nparts++;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&m->nparts, 1, MPIU_INT, 0, m->comm));
+  PetscCallMPI(MPI_Bcast(m->partName, BOLTROM_MAX_PARTS * BOLTROM_NAME_LEN, MPI_CHAR, 0, m->comm));
+  PetscCallMPI(MPI_Bcast(m->partTag, BOLTROM_MAX_PARTS, MPIU_INT, 0, m->comm));
+  PetscCheck(m->nparts > 0, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has no volume physical group: name one group per part (e.g. plate1, bolt)", m->filename);
+  PetscFunctionReturn(0);
+}
+
+/* part:material pairs -> material index of each part */
+static PetscErrorCode BoltMeshAssignMaterials(BoltMesh *m)
+{
+  char    **pairs;
+  PetscInt  npairs;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrToArray(m->partMaterialMap, ',', (int *)&npairs, &pairs));
+  for (PetscInt p = 0; p < m->nparts; p++) {
+    PetscBool found = PETSC_FALSE;
+
+    for (PetscInt i = 0; i < npairs && !found; i++) {
+      char  *colon;
+      size_t len;
+      PetscBool same;
+
+      PetscCall(PetscStrchr(pairs[i], ':', &colon));
+      PetscCheck(colon, m->comm, PETSC_ERR_USER_INPUT, "-part_material entry '%s' is not of the form part:material", pairs[i]);
+      len = (size_t)(colon - pairs[i]);
+      PetscCall(PetscStrncmp(pairs[i], m->partName[p], len, &same));
+      if (same && m->partName[p][len] == '\0') {
+        PetscCall(BoltMaterialTableFind(m->comm, &m->materials, colon + 1, &m->partMaterial[p]));
+        found = PETSC_TRUE;
+      }
+    }
+    PetscCheck(found, m->comm, PETSC_ERR_USER_INPUT, "Part '%s' has no material: add it to -part_material, e.g. -part_material %s:steel", m->partName[p], m->partName[p]);
+  }
+  PetscCall(PetscStrToArrayDestroy((int)npairs, pairs));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltMeshCheckHexahedra(BoltMesh *m, DM dm)
+{
+  PetscInt cStart, cEnd, bad = -1;
+  DMPolytopeType badType = DM_POLYTOPE_HEXAHEDRON;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  for (PetscInt c = cStart; c < cEnd && bad < 0; c++) {
+    DMPolytopeType ct;
+
+    PetscCall(DMPlexGetCellType(dm, c, &ct));
+    if (ct != DM_POLYTOPE_HEXAHEDRON) {
+      bad     = c;
+      badType = ct;
+    }
+  }
+  PetscCheck(bad < 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Mesh %s: cell %" PetscInt_FMT " is a %s, but boltrom needs hexahedra only: recombine the mesh into hexahedra in gmsh", m->filename, bad, DMPolytopeTypes[badType]);
+  PetscFunctionReturn(0);
+}
+
+/* Partition on rank 0 (METIS on the cell dual graph, or a PETSc partitioner), measure the edge
+   cut there, and hand the result to DMPlexDistribute through a shell partitioner. */
+static PetscErrorCode BoltMeshDistribute(BoltMesh *m, DM *dm)
+{
+  PetscMPIInt      size, rank;
+  PetscPartitioner part;
+  PetscInt         nv = 0, *xadj = NULL, *adj = NULL, *owner = NULL, *sizes, *points;
+  IS               globalNumbering;
+  PetscBool        metis;
+  DM               dmDist = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(m->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+  m->edgeCut = 0;
+  if (size == 1) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(boltLog.meshDistribute, 0, 0, 0, 0));
+  PetscCall(PetscStrcmp(m->partitioner, "metis", &metis));
+  PetscCall(DMPlexCreatePartitionerGraph(*dm, 0, &nv, &xadj, &adj, &globalNumbering));
+  PetscCall(PetscMalloc1(nv + 1, &owner));
+  if (metis) {
+    if (nv > 0) {
+      idx_t n = (idx_t)nv, ncon = 1, nparts = size, objval, options[METIS_NOPTIONS];
+      idx_t *mx, *ma, *mp;
+      int    status;
+
+      PetscCall(PetscMalloc3(nv + 1, &mx, xadj[nv], &ma, nv, &mp));
+      for (PetscInt i = 0; i <= nv; i++) mx[i] = (idx_t)xadj[i];
+      for (PetscInt i = 0; i < xadj[nv]; i++) ma[i] = (idx_t)adj[i];
+      METIS_SetDefaultOptions(options);
+      options[METIS_OPTION_SEED] = 17; /* same partition every run */
+      status = METIS_PartGraphKway(&n, &ncon, mx, ma, NULL, NULL, NULL, &nparts, NULL, NULL, options, &objval, mp);
+      PetscCheck(status == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_PartGraphKway failed with status %d", status);
+      for (PetscInt i = 0; i < nv; i++) owner[i] = (PetscInt)mp[i];
+      PetscCall(PetscFree3(mx, ma, mp));
+    }
+  } else {
+    PetscPartitioner ptmp;
+    PetscSection     partSection;
+    IS               partition;
+    const PetscInt  *pts;
+
+    PetscCall(PetscPartitionerCreate(m->comm, &ptmp));
+    PetscCall(PetscPartitionerSetType(ptmp, m->partitioner));
+    PetscCall(PetscPartitionerSetUp(ptmp));
+    PetscCall(PetscSectionCreate(m->comm, &partSection));
+    PetscCall(PetscPartitionerDMPlexPartition(ptmp, *dm, NULL, partSection, &partition));
+    PetscCall(ISGetIndices(partition, &pts));
+    for (PetscMPIInt r = 0; r < size; r++) {
+      PetscInt off, dof;
+      PetscCall(PetscSectionGetOffset(partSection, r, &off));
+      PetscCall(PetscSectionGetDof(partSection, r, &dof));
+      for (PetscInt k = 0; k < dof; k++) owner[pts[off + k]] = r;
+    }
+    PetscCall(ISRestoreIndices(partition, &pts));
+    PetscCall(ISDestroy(&partition));
+    PetscCall(PetscSectionDestroy(&partSection));
+    PetscCall(PetscPartitionerDestroy(&ptmp));
+  }
+  for (PetscInt i = 0; i < nv; i++)
+    for (PetscInt k = xadj[i]; k < xadj[i + 1]; k++)
+      if (owner[i] != owner[adj[k]]) m->edgeCut++;
+  m->edgeCut /= 2;
+  PetscCallMPI(MPI_Bcast(&m->edgeCut, 1, MPIU_INT, 0, m->comm));
+  /* shell partition: the cells of each rank, in rank order */
+  PetscCall(PetscCalloc1(size, &sizes));
+  PetscCall(PetscMalloc1(nv + 1, &points));
+  for (PetscInt i = 0; i < nv; i++) sizes[owner[i]]++;
+  {
+    PetscInt *start;
+    PetscCall(PetscCalloc1(size + 1, &start));
+    for (PetscMPIInt r = 0; r < size; r++) start[r + 1] = start[r] + sizes[r];
+    for (PetscInt i = 0; i < nv; i++) points[start[owner[i]]++] = i;
+    PetscCall(PetscFree(start));
+  }
+  PetscCall(DMPlexGetPartitioner(*dm, &part));
+  PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSHELL));
+  PetscCall(PetscPartitionerShellSetPartition(part, size, sizes, points));
+  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dmDist));
+  if (dmDist) {
+    PetscCall(DMDestroy(dm));
+    *dm = dmDist;
+  }
+  PetscCall(PetscFree(sizes));
+  PetscCall(PetscFree(points));
+  PetscCall(PetscFree(owner));
+  PetscCall(PetscFree(xadj));
+  PetscCall(PetscFree(adj));
+  PetscCall(ISDestroy(&globalNumbering));
+  PetscCall(PetscLogEventEnd(boltLog.meshDistribute, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshHasGroup(BoltMesh *m, const char name[], PetscBool *has)
+{
+  PetscInt local = 0, global;
+  DMLabel  label;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLabel(m->dm, name, &label));
+  if (label) {
+    IS ids;
+    PetscCall(DMLabelGetValueIS(label, &ids));
+    PetscCall(ISGetLocalSize(ids, &local));
+    PetscCall(ISDestroy(&ids));
+  }
+  PetscCall(MPIU_Allreduce(&local, &global, 1, MPIU_INT, MPI_MAX, m->comm));
+  *has = global > 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Vertices in the closure of every point of a group; unique, sorted; owned ones only if asked. */
+PetscErrorCode BoltMeshGroupVertices(BoltMesh *m, const char name[], PetscBool ownedOnly, PetscInt *nv, PetscInt **verts)
+{
+  DMLabel   label;
+  IS        ids;
+  PetscInt  nids, n = 0, cap = 64, *v;
+  const PetscInt *id;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(cap, &v));
+  PetscCall(DMGetLabel(m->dm, name, &label));
+  if (label) {
+    PetscCall(DMLabelGetValueIS(label, &ids));
+    PetscCall(ISGetLocalSize(ids, &nids));
+    PetscCall(ISGetIndices(ids, &id));
+    for (PetscInt i = 0; i < nids; i++) {
+      IS              pts;
+      const PetscInt *p;
+      PetscInt        np;
+
+      PetscCall(DMLabelGetStratumIS(label, id[i], &pts));
+      if (!pts) continue;
+      PetscCall(ISGetLocalSize(pts, &np));
+      PetscCall(ISGetIndices(pts, &p));
+      for (PetscInt j = 0; j < np; j++) {
+        PetscInt *cl = NULL, ncl;
+
+        PetscCall(DMPlexGetTransitiveClosure(m->dm, p[j], PETSC_TRUE, &ncl, &cl));
+        for (PetscInt k = 0; k < ncl; k++) {
+          PetscInt q = cl[2 * k];
+          if (q < m->vStart || q >= m->vEnd) continue;
+          if (ownedOnly && m->vertexGhost[q - m->vStart]) continue;
+          if (n == cap) {
+            cap *= 2;
+            PetscCall(PetscRealloc(sizeof(PetscInt) * cap, &v));
+          }
+          v[n++] = q;
+        }
+        PetscCall(DMPlexRestoreTransitiveClosure(m->dm, p[j], PETSC_TRUE, &ncl, &cl));
+      }
+      PetscCall(ISRestoreIndices(pts, &p));
+      PetscCall(ISDestroy(&pts));
+    }
+    PetscCall(ISRestoreIndices(ids, &id));
+    PetscCall(ISDestroy(&ids));
+  }
+  PetscCall(PetscSortRemoveDupsInt(&n, v));
+  *nv    = n;
+  *verts = v;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltMeshCreateSection(BoltMesh *m)
+{
+  PetscSection s;
+  PetscInt     pStart, pEnd, nclamp = 0, *clampVerts = NULL;
+  const PetscInt all[3] = {0, 1, 2};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
+  PetscCall(PetscSectionCreate(m->comm, &s));
+  PetscCall(PetscSectionSetNumFields(s, 1));
+  PetscCall(PetscSectionSetFieldComponents(s, 0, 3));
+  PetscCall(PetscSectionSetFieldName(s, 0, "displacement"));
+  PetscCall(PetscSectionSetChart(s, pStart, pEnd));
+  for (PetscInt v = m->vStart; v < m->vEnd; v++) {
+    PetscCall(PetscSectionSetDof(s, v, 3));
+    PetscCall(PetscSectionSetFieldDof(s, v, 0, 3));
+  }
+  if (m->clamp) {
+    PetscCall(BoltMeshGroupVertices(m, m->clampGroup, PETSC_FALSE, &nclamp, &clampVerts));
+    for (PetscInt i = 0; i < nclamp; i++) {
+      PetscCall(PetscSectionSetConstraintDof(s, clampVerts[i], 3));
+      PetscCall(PetscSectionSetFieldConstraintDof(s, clampVerts[i], 0, 3));
+    }
+  }
+  PetscCall(PetscSectionSetUp(s));
+  for (PetscInt i = 0; i < nclamp; i++) {
+    PetscCall(PetscSectionSetConstraintIndices(s, clampVerts[i], all));
+    PetscCall(PetscSectionSetFieldConstraintIndices(s, clampVerts[i], 0, all));
+  }
+  PetscCall(PetscFree(clampVerts));
+  PetscCall(DMSetLocalSection(m->dm, s));
+  PetscCall(PetscSectionDestroy(&s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshSetUp(BoltMesh *m)
+{
+  PetscBool   exists, has;
+  DM          dm;
+  PetscSF     sf;
+  PetscInt    nleaves;
+  const PetscInt *leaves;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+  PetscCheck(m->filename[0], m->comm, PETSC_ERR_USER_INPUT, "No mesh given: set -mesh FILE.msh (make one with scripts/mesh-joint)");
+  PetscCall(PetscTestFile(m->filename, 'r', &exists));
+  PetscCheck(exists, m->comm, PETSC_ERR_USER_INPUT, "Mesh file %s does not exist or is not readable: check -mesh, or make it with scripts/mesh-joint", m->filename);
+  /* labels named after the physical groups, point groups included */
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_use_regions", &has));
+  if (!has) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "1"));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_mark_vertices", &has));
+  if (!has) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "1"));
+  PetscCall(PetscLogEventBegin(boltLog.meshRead, 0, 0, 0, 0));
+  PetscCall(DMPlexCreateFromFile(m->comm, m->filename, "boltrom", PETSC_TRUE, &dm));
+  PetscCall(PetscLogEventEnd(boltLog.meshRead, 0, 0, 0, 0));
+  PetscCall(PetscObjectSetName((PetscObject)dm, "boltrom"));
+  {
+    PetscInt dim;
+    PetscCall(DMGetDimension(dm, &dim));
+    PetscCheck(dim == 3, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s is %" PetscInt_FMT "-dimensional: boltrom needs a 3D hexahedral mesh", m->filename, dim);
+  }
+  {
+    PetscErrorCode ierr = 0;
+    PetscInt       ok, allok;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = BoltMeshCheckHexahedra(m, dm);
+    PetscCall(PetscPopErrorHandler());
+    ok = ierr ? 0 : 1;
+    PetscCall(MPIU_Allreduce(&ok, &allok, 1, MPIU_INT, MPI_MIN, m->comm));
+    if (!allok) PetscCall(BoltMeshCheckHexahedra(m, dm)); /* repeat to raise the error with its message */
+    PetscCheck(allok, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has non-hexahedral cells: recombine it into hexahedra", m->filename);
+  }
+  PetscCall(BoltMeshFindParts(m, dm));
+  PetscCall(BoltMeshAssignMaterials(m));
+  PetscCall(BoltMeshDistribute(m, &dm));
+  m->dm = dm;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &m->cStart, &m->cEnd));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &m->vStart, &m->vEnd));
+  PetscCall(PetscCalloc1(m->vEnd - m->vStart + 1, &m->vertexGhost));
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
+  for (PetscInt i = 0; i < nleaves; i++) {
+    PetscInt p = leaves ? leaves[i] : i;
+    if (p >= m->vStart && p < m->vEnd) m->vertexGhost[p - m->vStart] = PETSC_TRUE;
+  }
+  if (m->clamp) {
+    PetscCall(BoltMeshHasGroup(m, m->clampGroup, &has));
+    PetscCheck(has, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has no physical group '%s' to clamp: add it, set -clamp_group NAME, or run free-free with -clamp false", m->filename, m->clampGroup);
+  }
+  /* part of every local cell */
+  PetscCall(PetscMalloc1(m->cEnd - m->cStart + 1, &m->cellPart));
+  for (PetscInt c = m->cStart; c < m->cEnd; c++) m->cellPart[c - m->cStart] = -1;
+  for (PetscInt p = 0; p < m->nparts; p++) {
+    IS              pts;
+    const PetscInt *pt;
+    PetscInt        np;
+
+    PetscCall(DMGetStratumIS(dm, m->partName[p], m->partTag[p], &pts));
+    if (!pts) continue;
+    PetscCall(ISGetLocalSize(pts, &np));
+    PetscCall(ISGetIndices(pts, &pt));
+    for (PetscInt j = 0; j < np; j++)
+      if (pt[j] >= m->cStart && pt[j] < m->cEnd) m->cellPart[pt[j] - m->cStart] = p;
+    PetscCall(ISRestoreIndices(pts, &pt));
+    PetscCall(ISDestroy(&pts));
+  }
+  for (PetscInt c = m->cStart; c < m->cEnd; c++) PetscCheck(m->cellPart[c - m->cStart] >= 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Mesh %s: a cell belongs to no volume physical group: put every hexahedron in one part", m->filename);
+  PetscCall(BoltMeshCreateSection(m));
+  {
+    PetscInt nown = 0, ncell = m->cEnd - m->cStart, N;
+    Vec      x;
+    for (PetscInt v = m->vStart; v < m->vEnd; v++)
+      if (!m->vertexGhost[v - m->vStart]) nown++;
+    PetscCall(MPIU_Allreduce(&nown, &m->nverticesGlobal, 1, MPIU_INT, MPI_SUM, m->comm));
+    PetscCall(MPIU_Allreduce(&ncell, &m->ncellsGlobal, 1, MPIU_INT, MPI_SUM, m->comm));
+    PetscCall(DMCreateGlobalVector(dm, &x));
+    PetscCall(VecGetSize(x, &N));
+    m->ndofsFree = N;
+    PetscCall(VecDestroy(&x));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Closure vertex order of a DMPlex hexahedron -> gmsh/VTK order used by the element kernels. */
+static const PetscInt plexToGmshHex[8] = {0, 3, 2, 1, 4, 5, 6, 7};
+
+PetscErrorCode BoltMeshCellVertices(BoltMesh *m, PetscInt c, PetscInt verts[8])
+{
+  PetscInt *cl = NULL, ncl, n = 0, tmp[8];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetTransitiveClosure(m->dm, c, PETSC_TRUE, &ncl, &cl));
+  for (PetscInt k = 0; k < ncl; k++)
+    if (cl[2 * k] >= m->vStart && cl[2 * k] < m->vEnd) tmp[n++] = cl[2 * k];
+  PetscCall(DMPlexRestoreTransitiveClosure(m->dm, c, PETSC_TRUE, &ncl, &cl));
+  PetscCheck(n == 8, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices", c, n);
+  for (PetscInt a = 0; a < 8; a++) verts[a] = tmp[plexToGmshHex[a]];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshCellCoordinates(BoltMesh *m, PetscInt c, PetscReal X[24])
+{
+  PetscInt           verts[8];
+  Vec                coords;
+  PetscSection       cs;
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltMeshCellVertices(m, c, verts));
+  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
+  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(VecGetArrayRead(coords, &x));
+  for (PetscInt a = 0; a < 8; a++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(cs, verts[a], &off));
+    for (PetscInt d = 0; d < 3; d++) X[3 * a + d] = PetscRealPart(x[off + d]);
+  }
+  PetscCall(VecRestoreArrayRead(coords, &x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshVertexDofs(BoltMesh *m, PetscInt v, PetscInt idx[3])
+{
+  PetscSection gs;
+  PetscInt     off, dof, cdof;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetGlobalSection(m->dm, &gs));
+  PetscCall(PetscSectionGetOffset(gs, v, &off));
+  PetscCall(PetscSectionGetDof(gs, v, &dof));
+  PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
+  if (off < 0) off = -(off + 1);
+  if (dof < 0) dof = -(dof + 1);
+  for (PetscInt d = 0; d < 3; d++) idx[d] = (dof - cdof == 3) ? off + d : -1;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshCellDofs(BoltMesh *m, PetscInt c, PetscInt idx[24])
+{
+  PetscInt verts[8];
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltMeshCellVertices(m, c, verts));
+  for (PetscInt a = 0; a < 8; a++) PetscCall(BoltMeshVertexDofs(m, verts[a], &idx[3 * a]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshVertexOwned(BoltMesh *m, PetscInt v, PetscBool *owned)
+{
+  PetscFunctionBeginUser;
+  *owned = m->vertexGhost[v - m->vStart] ? PETSC_FALSE : PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* Sets a global vector from f(x, vertex part) at every owned, unclamped vertex. */
+PetscErrorCode BoltMeshFillVertexField(BoltMesh *m, PetscErrorCode (*f)(const PetscReal[3], PetscInt, PetscReal[3], void *), void *ctx, Vec u)
+{
+  Vec                coords;
+  PetscSection       cs;
+  const PetscScalar *x;
+  PetscInt          *vpart;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(m->vEnd - m->vStart + 1, &vpart));
+  for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) vpart[v] = PETSC_MAX_INT;
+  for (PetscInt c = m->cStart; c < m->cEnd; c++) {
+    PetscInt verts[8];
+    PetscCall(BoltMeshCellVertices(m, c, verts));
+    for (PetscInt a = 0; a < 8; a++) vpart[verts[a] - m->vStart] = PetscMin(vpart[verts[a] - m->vStart], m->cellPart[c - m->cStart]);
+  }
+  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
+  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(VecGetArrayRead(coords, &x));
+  for (PetscInt v = m->vStart; v < m->vEnd; v++) {
+    PetscInt    off, idx[3];
+    PetscReal   X[3], val[3];
+    PetscScalar sv[3];
+
+    if (m->vertexGhost[v - m->vStart]) continue;
+    PetscCall(BoltMeshVertexDofs(m, v, idx));
+    if (idx[0] < 0) continue;
+    PetscCall(PetscSectionGetOffset(cs, v, &off));
+    for (PetscInt d = 0; d < 3; d++) X[d] = PetscRealPart(x[off + d]);
+    PetscCall(f(X, vpart[v - m->vStart], val, ctx));
+    for (PetscInt d = 0; d < 3; d++) sv[d] = val[d];
+    PetscCall(VecSetValues(u, 3, idx, sv, INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(coords, &x));
+  PetscCall(VecAssemblyBegin(u));
+  PetscCall(VecAssemblyEnd(u));
+  PetscCall(PetscFree(vpart));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshView(BoltMesh *m, PetscViewer viewer)
+{
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(m->comm, &size));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "Mesh %s: %" PetscInt_FMT " hexahedra, %" PetscInt_FMT " nodes, %" PetscInt_FMT " DOFs (%" PetscInt_FMT " free after clamping '%s'), element %s\n", m->filename, m->ncellsGlobal, m->nverticesGlobal, 3 * m->nverticesGlobal, m->ndofsFree, m->clamp ? m->clampGroup : "none", m->formulation == HEX8_FULL ? "full" : "incompatible"));
+  if (size > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "  partitioner %s on %d ranks: edge cut %" PetscInt_FMT " faces\n", m->partitioner, size, m->edgeCut));
+  for (PetscInt p = 0; p < m->nparts; p++) {
+    const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  part %-12s %-10s E %.4g Pa, nu %.3g, rho %.5g kg/m^3\n", m->partName[p], mat->name, (double)mat->E, (double)mat->nu, (double)mat->rho));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshDestroy(BoltMesh **mesh)
+{
+  PetscFunctionBeginUser;
+  if (!*mesh) PetscFunctionReturn(0);
+  PetscCall(DMDestroy(&(*mesh)->dm));
+  PetscCall(PetscFree((*mesh)->cellPart));
+  PetscCall(PetscFree((*mesh)->vertexGhost));
+  PetscCall(PetscFree(*mesh));
+  PetscFunctionReturn(0);
+}

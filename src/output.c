@@ -1,0 +1,333 @@
+/* Output: an HDF5 file (PetscViewerHDF5) with the mesh, part ids and vertex fields, an XDMF
+   file beside it so that ParaView opens it, and the JSON summary. Every file is written under
+   a temporary name and renamed when complete, so a failed run leaves no half-written file. */
+#include "boltrom.h"
+#include <petscviewerhdf5.h>
+#include <sys/stat.h>
+
+PetscErrorCode BoltMakeDir(MPI_Comm comm, const char dir[])
+{
+  PetscMPIInt rank;
+  PetscBool   ok = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    char   path[PETSC_MAX_PATH_LEN];
+    size_t len;
+    PetscCall(PetscStrncpy(path, dir, sizeof(path)));
+    PetscCall(PetscStrlen(path, &len));
+    for (size_t i = 1; i <= len && ok; i++) { /* mkdir -p */
+      if (path[i] == '/' || path[i] == '\0') {
+        char      save = path[i];
+        PetscBool exists;
+        path[i] = '\0';
+        PetscCall(PetscTestDirectory(path, 'w', &exists));
+        if (!exists) {
+          PetscCall(PetscTestDirectory(path, 'r', &exists));
+          if (!exists && mkdir(path, 0755) != 0) ok = PETSC_FALSE;
+        }
+        path[i] = save;
+      }
+    }
+    if (ok) PetscCall(PetscTestDirectory(dir, 'w', &ok));
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_BOOL, 0, comm));
+  PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s: choose a writable one with -output_dir", dir);
+  PetscFunctionReturn(0);
+}
+
+/* Global vertex number of a local vertex (ghosts are encoded -(g+1) by DMPlex). */
+static inline PetscInt BoltGlobalNumber(const PetscInt *num, PetscInt i)
+{
+  return num[i] < 0 ? -(num[i] + 1) : num[i];
+}
+
+PetscErrorCode BoltOutputOpen(BoltMesh *m, const char dir[], const char name[], BoltOutput *out)
+{
+  IS              vnumIS, cnumIS, topo;
+  const PetscInt *vnum, *cnum;
+  PetscInt        nown = 0, ncell = m->cEnd - m->cStart, *cells;
+  Vec             geom, part, vpart;
+  Vec             coords;
+  PetscSection    cs;
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.output, 0, 0, 0, 0));
+  PetscCall(PetscMemzero(out, sizeof(*out)));
+  out->comm = m->comm;
+  PetscCall(PetscStrncpy(out->dir, dir, sizeof(out->dir)));
+  PetscCall(PetscStrncpy(out->name, name, sizeof(out->name)));
+  PetscCall(BoltMakeDir(m->comm, dir));
+  PetscCall(PetscSNPrintf(out->h5final, sizeof(out->h5final), "%s/%s.h5", dir, name));
+  PetscCall(PetscSNPrintf(out->h5tmp, sizeof(out->h5tmp), "%s/.%s.h5.tmp", dir, name));
+  PetscCall(PetscViewerHDF5Open(m->comm, out->h5tmp, FILE_MODE_WRITE, &out->viewer));
+
+  PetscCall(DMPlexGetVertexNumbering(m->dm, &vnumIS));
+  PetscCall(DMPlexGetCellNumbering(m->dm, &cnumIS));
+  PetscCall(ISGetIndices(vnumIS, &vnum));
+  PetscCall(ISGetIndices(cnumIS, &cnum));
+  for (PetscInt v = m->vStart; v < m->vEnd; v++)
+    if (vnum[v - m->vStart] >= 0) nown++;
+  /* geometry: (N, 3) */
+  PetscCall(VecCreateMPI(m->comm, 3 * nown, 3 * m->nverticesGlobal, &geom));
+  PetscCall(VecSetBlockSize(geom, 3));
+  PetscCall(VecCreateMPI(m->comm, nown, m->nverticesGlobal, &vpart));
+  PetscCall(PetscObjectSetName((PetscObject)geom, "vertices"));
+  PetscCall(PetscObjectSetName((PetscObject)vpart, "part"));
+  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
+  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(VecGetArrayRead(coords, &x));
+  for (PetscInt v = m->vStart; v < m->vEnd; v++) {
+    PetscInt off, g = vnum[v - m->vStart], rows[3];
+    if (g < 0) continue;
+    PetscCall(PetscSectionGetOffset(cs, v, &off));
+    for (PetscInt d = 0; d < 3; d++) rows[d] = 3 * g + d;
+    PetscCall(VecSetValues(geom, 3, rows, &x[off], INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(coords, &x));
+  /* topology (NC, 8) in VTK order, part of each cell, and the lowest part at each vertex
+     (a key, with the coordinates, to compare runs on different rank counts) */
+  PetscCall(VecCreateMPI(m->comm, ncell, m->ncellsGlobal, &part));
+  PetscCall(PetscObjectSetName((PetscObject)part, "part"));
+  PetscCall(PetscMalloc1(8 * ncell + 1, &cells));
+  {
+    PetscInt *vp;
+    PetscCall(PetscMalloc1(m->vEnd - m->vStart + 1, &vp));
+    for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) vp[v] = PETSC_MAX_INT;
+    for (PetscInt c = m->cStart; c < m->cEnd; c++) {
+      PetscInt verts[8];
+      PetscCall(BoltMeshCellVertices(m, c, verts));
+      for (PetscInt a = 0; a < 8; a++) vp[verts[a] - m->vStart] = PetscMin(vp[verts[a] - m->vStart], m->cellPart[c - m->cStart]);
+    }
+    for (PetscInt v = m->vStart; v < m->vEnd; v++)
+      if (vnum[v - m->vStart] >= 0) PetscCall(VecSetValue(vpart, vnum[v - m->vStart], (PetscScalar)vp[v - m->vStart], INSERT_VALUES));
+    PetscCall(PetscFree(vp));
+  }
+  for (PetscInt c = m->cStart; c < m->cEnd; c++) {
+    PetscInt verts[8], g = cnum[c - m->cStart];
+    PetscCheck(g >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Unexpected ghost cell");
+    PetscCall(BoltMeshCellVertices(m, c, verts));
+    for (PetscInt a = 0; a < 8; a++) {
+      PetscInt gv = BoltGlobalNumber(vnum, verts[a] - m->vStart);
+      cells[8 * (c - m->cStart) + a] = gv;
+    }
+    PetscCall(VecSetValue(part, g, (PetscScalar)m->cellPart[c - m->cStart], INSERT_VALUES));
+  }
+  PetscCall(ISRestoreIndices(vnumIS, &vnum));
+  PetscCall(ISRestoreIndices(cnumIS, &cnum));
+  PetscCall(VecAssemblyBegin(geom));
+  PetscCall(VecAssemblyEnd(geom));
+  PetscCall(VecAssemblyBegin(part));
+  PetscCall(VecAssemblyEnd(part));
+  PetscCall(VecAssemblyBegin(vpart));
+  PetscCall(VecAssemblyEnd(vpart));
+  PetscCall(ISCreateGeneral(m->comm, 8 * ncell, cells, PETSC_OWN_POINTER, &topo));
+  PetscCall(ISSetBlockSize(topo, 8));
+  PetscCall(PetscObjectSetName((PetscObject)topo, "cells"));
+  PetscCall(PetscViewerHDF5PushGroup(out->viewer, "/geometry"));
+  PetscCall(VecView(geom, out->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(out->viewer));
+  PetscCall(PetscViewerHDF5PushGroup(out->viewer, "/topology"));
+  PetscCall(ISView(topo, out->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(out->viewer));
+  PetscCall(PetscViewerHDF5PushGroup(out->viewer, "/cell_fields"));
+  PetscCall(VecView(part, out->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(out->viewer));
+  PetscCall(PetscViewerHDF5PushGroup(out->viewer, "/vertex_fields"));
+  PetscCall(VecView(vpart, out->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(out->viewer));
+  out->nfields = 0;
+  PetscCall(PetscStrncpy(out->field[out->nfields], "part", BOLTROM_NAME_LEN));
+  out->fieldComponents[out->nfields] = 1;
+  out->fieldOnCells[out->nfields++]  = PETSC_TRUE;
+  PetscCall(ISDestroy(&topo));
+  PetscCall(VecDestroy(&geom));
+  PetscCall(VecDestroy(&part));
+  PetscCall(VecDestroy(&vpart));
+  PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* A displacement-like field (free DOFs of the global system) as an (N, 3) vertex field,
+   clamped nodes at zero. */
+PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const char name[])
+{
+  IS                 vnumIS;
+  const PetscInt    *vnum;
+  PetscInt           nown = 0, rstart;
+  Vec                w;
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCheck(out->nfields < 16, m->comm, PETSC_ERR_SUP, "Too many output fields");
+  PetscCall(PetscLogEventBegin(boltLog.output, 0, 0, 0, 0));
+  PetscCall(DMPlexGetVertexNumbering(m->dm, &vnumIS));
+  PetscCall(ISGetIndices(vnumIS, &vnum));
+  for (PetscInt v = m->vStart; v < m->vEnd; v++)
+    if (vnum[v - m->vStart] >= 0) nown++;
+  PetscCall(VecCreateMPI(m->comm, 3 * nown, 3 * m->nverticesGlobal, &w));
+  PetscCall(VecSetBlockSize(w, 3));
+  PetscCall(PetscObjectSetName((PetscObject)w, name));
+  PetscCall(VecGetOwnershipRange(u, &rstart, NULL));
+  PetscCall(VecGetArrayRead(u, &a));
+  for (PetscInt v = m->vStart; v < m->vEnd; v++) {
+    PetscInt    g = vnum[v - m->vStart], idx[3], rows[3];
+    PetscScalar val[3];
+    if (g < 0) continue;
+    PetscCall(BoltMeshVertexDofs(m, v, idx));
+    for (PetscInt d = 0; d < 3; d++) {
+      rows[d] = 3 * g + d;
+      val[d]  = idx[d] >= 0 ? a[idx[d] - rstart] : 0.0;
+    }
+    PetscCall(VecSetValues(w, 3, rows, val, INSERT_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(u, &a));
+  PetscCall(ISRestoreIndices(vnumIS, &vnum));
+  PetscCall(VecAssemblyBegin(w));
+  PetscCall(VecAssemblyEnd(w));
+  PetscCall(PetscViewerHDF5PushGroup(out->viewer, "/vertex_fields"));
+  PetscCall(VecView(w, out->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(out->viewer));
+  PetscCall(VecDestroy(&w));
+  PetscCall(PetscStrncpy(out->field[out->nfields], name, BOLTROM_NAME_LEN));
+  out->fieldComponents[out->nfields] = 3;
+  out->fieldOnCells[out->nfields++]  = PETSC_FALSE;
+  PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.output, 0, 0, 0, 0));
+  PetscCall(PetscViewerDestroy(&out->viewer));
+  PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+  if (rank == 0) {
+    char  xtmp[PETSC_MAX_PATH_LEN], xfinal[PETSC_MAX_PATH_LEN];
+    FILE *fp;
+
+    PetscCheck(rename(out->h5tmp, out->h5final) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", out->h5tmp, out->h5final);
+    PetscCall(PetscSNPrintf(xfinal, sizeof(xfinal), "%s/%s.xmf", out->dir, out->name));
+    PetscCall(PetscSNPrintf(xtmp, sizeof(xtmp), "%s/.%s.xmf.tmp", out->dir, out->name));
+    fp = fopen(xtmp, "w");
+    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: check -output_dir", xtmp);
+    fprintf(fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
+    fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Uniform\">\n", out->name);
+    fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n", m->ncellsGlobal);
+    fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s.h5:/topology/cells</DataItem>\n   </Topology>\n", m->ncellsGlobal, (int)sizeof(PetscInt), out->name);
+    fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/geometry/vertices</DataItem>\n   </Geometry>\n", m->nverticesGlobal, out->name);
+    for (PetscInt f = 0; f < out->nfields; f++) {
+      PetscInt n = out->fieldOnCells[f] ? m->ncellsGlobal : m->nverticesGlobal;
+      fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", out->field[f], out->fieldComponents[f] == 3 ? "Vector" : "Scalar", out->fieldOnCells[f] ? "Cell" : "Node");
+      if (out->fieldComponents[f] == 3) fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/%s/%s</DataItem>\n", n, out->name, "vertex_fields", out->field[f]);
+      else fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/%s/%s</DataItem>\n", n, out->name, out->fieldOnCells[f] ? "cell_fields" : "vertex_fields", out->field[f]);
+      fprintf(fp, "   </Attribute>\n");
+    }
+    fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+    PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", xtmp);
+    PetscCheck(rename(xtmp, xfinal) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", xtmp, xfinal);
+  }
+  PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* ---------------------------------------------------------------- JSON summary (rank 0) */
+static void BoltJSONKey(BoltJSON *j, const char key[])
+{
+  if (!j->fp) return;
+  fprintf(j->fp, "%s\n%*s", j->first[j->depth] ? "" : ",", 2 * (int)j->depth, "");
+  j->first[j->depth] = PETSC_FALSE;
+  if (key) fprintf(j->fp, "\"%s\": ", key);
+}
+
+PetscErrorCode BoltJSONOpen(MPI_Comm comm, const char path[], BoltJSON *j)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(j, sizeof(*j)));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank) PetscFunctionReturn(0);
+  PetscCall(PetscStrncpy(j->final, path, sizeof(j->final)));
+  PetscCall(PetscSNPrintf(j->tmp, sizeof(j->tmp), "%s.tmp", path));
+  j->fp = fopen(j->tmp, "w");
+  PetscCheck(j->fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write the summary %s: check -summary and that its folder exists", path);
+  fprintf(j->fp, "{");
+  j->depth    = 1;
+  j->first[1] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltJSONBeginObject(BoltJSON *j, const char key[])
+{
+  PetscFunctionBeginUser;
+  if (!j->fp) PetscFunctionReturn(0);
+  BoltJSONKey(j, key);
+  fprintf(j->fp, "{");
+  j->depth++;
+  j->first[j->depth] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltJSONEndObject(BoltJSON *j)
+{
+  PetscFunctionBeginUser;
+  if (!j->fp) PetscFunctionReturn(0);
+  j->depth--;
+  fprintf(j->fp, "\n%*s}", 2 * (int)j->depth, "");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltJSONInt(BoltJSON *j, const char key[], PetscInt v)
+{
+  PetscFunctionBeginUser;
+  if (!j->fp) PetscFunctionReturn(0);
+  BoltJSONKey(j, key);
+  fprintf(j->fp, "%" PetscInt_FMT, v);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltJSONReal(BoltJSON *j, const char key[], PetscReal v)
+{
+  PetscFunctionBeginUser;
+  if (!j->fp) PetscFunctionReturn(0);
+  BoltJSONKey(j, key);
+  if (PetscIsInfOrNanReal(v)) fprintf(j->fp, "null");
+  else fprintf(j->fp, "%.17g", (double)v);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltJSONString(BoltJSON *j, const char key[], const char v[])
+{
+  PetscFunctionBeginUser;
+  if (!j->fp) PetscFunctionReturn(0);
+  BoltJSONKey(j, key);
+  fprintf(j->fp, "\"%s\"", v);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltJSONRealArray(BoltJSON *j, const char key[], PetscInt n, const PetscReal v[])
+{
+  PetscFunctionBeginUser;
+  if (!j->fp) PetscFunctionReturn(0);
+  BoltJSONKey(j, key);
+  fprintf(j->fp, "[");
+  for (PetscInt i = 0; i < n; i++) fprintf(j->fp, "%s%.17g", i ? ", " : "", (double)v[i]);
+  fprintf(j->fp, "]");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltJSONClose(BoltJSON *j)
+{
+  PetscFunctionBeginUser;
+  if (!j->fp) PetscFunctionReturn(0);
+  fprintf(j->fp, "\n}\n");
+  PetscCheck(fclose(j->fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", j->tmp);
+  j->fp = NULL;
+  PetscCheck(rename(j->tmp, j->final) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", j->tmp, j->final);
+  PetscFunctionReturn(0);
+}
