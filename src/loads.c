@@ -97,7 +97,8 @@ static PetscErrorCode BoltLoadFaces(BoltMesh *m, DMLabel label, const PetscReal 
   PetscCall(DMGetPointSF(m->dm, &sf));
   PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
   for (PetscInt i = 0; i < nleaves; i++) PetscCall(PetscBTSet(ghost, (leaves ? leaves[i] : i) - pStart));
-  PetscCall(PetscMalloc2(4 * cap, &faceVerts, cap, &faceArea));
+  PetscCall(PetscMalloc1(4 * cap, &faceVerts));
+  PetscCall(PetscMalloc1(cap, &faceArea));
   PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
   PetscCall(DMGetCoordinateSection(m->dm, &cs));
   PetscCall(VecGetArrayRead(coords, &x));
@@ -152,7 +153,8 @@ static PetscErrorCode BoltLoadFaces(BoltMesh *m, DMLabel label, const PetscReal 
     }
   PetscCall(VecAssemblyBegin(f));
   PetscCall(VecAssemblyEnd(f));
-  PetscCall(PetscFree2(faceVerts, faceArea));
+  PetscCall(PetscFree(faceVerts));
+  PetscCall(PetscFree(faceArea));
   PetscCall(PetscBTDestroy(&ghost));
   PetscFunctionReturn(0);
 }

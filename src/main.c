@@ -9,6 +9,7 @@ typedef struct {
   char      outputName[BOLTROM_NAME_LEN];
   char      summary[PETSC_MAX_PATH_LEN];
   PetscBool staticSolve, verifyFields, checkRigid, writeOutput;
+  PetscInt  verifyField; /* 0 smooth, 1 linear */
   PetscInt  nev;
 } BoltRunOptions;
 
@@ -23,6 +24,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   o->checkRigid   = PETSC_FALSE;
   o->writeOutput  = PETSC_TRUE;
   o->nev          = 3;
+  o->verifyField  = 0;
   PetscOptionsBegin(comm, NULL, "Run", "boltrom");
   PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
   PetscCall(PetscOptionsString("-output_name", "Base name of the HDF5/XDMF files", NULL, o->outputName, o->outputName, sizeof(o->outputName), NULL));
@@ -31,6 +33,10 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
   PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
   PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));
+  {
+    const char *kinds[] = {"smooth", "linear"};
+    PetscCall(PetscOptionsEList("-verify_field", "The field x of -verify_fields: smooth (sines) or linear (patch test: K x vanishes at interior nodes)", NULL, kinds, 2, kinds[o->verifyField], &o->verifyField, NULL));
+  }
   PetscCall(PetscOptionsBool("-check_rigid", "Check K r = 0 for the six rigid motions of every part (use with -clamp false)", NULL, o->checkRigid, &o->checkRigid, NULL));
   PetscOptionsEnd();
   PetscCheck(o->nev >= 0 && o->nev <= 100, comm, PETSC_ERR_USER_INPUT, "-modal_nev must be in [0, 100] (got %" PetscInt_FMT ")", o->nev);
@@ -56,6 +62,15 @@ static PetscErrorCode BoltCheckUnusedOptions(MPI_Comm comm)
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscFunctionReturn(0);
+}
+
+/* A general linear field u = A x + b: the patch test's exact solution. */
+static PetscErrorCode LinearField(const PetscReal X[3], PetscInt part, PetscReal u[3], void *ctx)
+{
+  const PetscReal A[3][3] = {{1.0, 0.3, -0.2}, {0.4, -0.7, 0.5}, {-0.6, 0.2, 0.9}}, b[3] = {1e-3, -2e-3, 3e-3};
+
+  for (PetscInt i = 0; i < 3; i++) u[i] = b[i] + A[i][0] * X[0] + A[i][1] * X[1] + A[i][2] * X[2];
+  return 0;
 }
 
 /* A smooth, fixed vector field for operator checks. */
@@ -122,6 +137,28 @@ static PetscErrorCode BoltRun(void)
   PetscCall(BoltContactSetSetFromOptions(contact));
   PetscCall(BoltLoadSetCreate(mesh, &loads));
   PetscCall(BoltLoadSetSetFromOptions(loads));
+  {
+    PetscBool help;
+    PetscCall(PetscOptionsHasHelp(NULL, &help));
+    if (help && !mesh->filename[0]) { /* -help alone: list the options (solvers' too) and stop */
+      KSP ksp;
+      EPS eps;
+      PetscCall(KSPCreate(comm, &ksp));
+      PetscCall(KSPSetOptionsPrefix(ksp, "static_"));
+      PetscCall(KSPSetFromOptions(ksp));
+      PetscCall(KSPDestroy(&ksp));
+      PetscCall(EPSCreate(comm, &eps));
+      PetscCall(EPSSetOptionsPrefix(eps, "modal_"));
+      PetscCall(EPSSetFromOptions(eps));
+      PetscCall(EPSDestroy(&eps));
+      PetscCall(BoltLoadSetDestroy(&loads));
+      PetscCall(BoltContactSetDestroy(&contact));
+      PetscCall(BoltAssemblerDestroy(&asmb));
+      PetscCall(BoltMeshDestroy(&mesh));
+      PetscCall(PetscLogStagePop());
+      PetscFunctionReturn(0);
+    }
+  }
   if (opt.summary[0]) { /* fail now, not after the solve, if the summary cannot be written */
     char      dir[PETSC_MAX_PATH_LEN];
     char     *slash;
@@ -184,7 +221,7 @@ static PetscErrorCode BoltRun(void)
     PetscCall(VecDuplicate(u, &x));
     PetscCall(VecDuplicate(u, &Kx));
     PetscCall(VecDuplicate(u, &Mx));
-    PetscCall(BoltMeshFillVertexField(mesh, SmoothField, NULL, x));
+    PetscCall(BoltMeshFillVertexField(mesh, opt.verifyField ? LinearField : SmoothField, NULL, x));
     PetscCall(MatMult(Ktied, x, Kx));
     PetscCall(MatMult(asmb->M, x, Mx));
   }

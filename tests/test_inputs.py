@@ -1,0 +1,92 @@
+"""Bad input: one line naming the problem and the fix, a non-zero exit, no output left behind."""
+import subprocess
+
+import pytest
+
+from conftest import ENV, PYTHON, ROOT, make_mesh, run_boltrom
+
+
+def expect_error(args, tmp_path, *words):
+    out = tmp_path / "out"
+    proc = run_boltrom(list(args) + ["-output_dir", out, "-summary", out / "summary.json"], check=False)
+    assert proc.returncode != 0
+    lines = [l for l in proc.stderr.splitlines() if l.strip()]
+    assert len(lines) == 1 and lines[0].startswith("boltrom: error: "), proc.stderr
+    for w in words:
+        assert w in lines[0], (w, lines[0])
+    assert not out.exists() or not any(out.iterdir())
+    return lines[0]
+
+
+@pytest.fixture(scope="module")
+def beam(meshdir):
+    return make_mesh("beam", meshdir / "beam-inputs.msh", 0.5)[0]
+
+
+def test_missing_mesh_file(tmp_path):
+    expect_error(["-mesh", tmp_path / "nope.msh"], tmp_path, "nope.msh", "does not exist", "-mesh")
+
+
+def test_no_mesh_given(tmp_path):
+    expect_error([], tmp_path, "-mesh")
+
+
+def gmsh_script(code, tmp_path):
+    script = tmp_path / "make.py"
+    script.write_text("import gmsh\ngmsh.initialize()\ngmsh.option.setNumber('General.Terminal', 0)\n" + code + "\ngmsh.finalize()\n")
+    subprocess.run([PYTHON, str(script)], check=True, env=ENV)
+
+
+def test_missing_clamp_group(tmp_path):
+    text, _ = make_mesh("beam", tmp_path / "beam.msh", 0.5, ["--ascii"])
+    bad = tmp_path / "noclamp.msh"
+    bad.write_text(text.read_text().replace('"clamp"', '"fixed_end"'))  # no group 'clamp' left
+    expect_error(["-mesh", bad, "-load_group", "tip"], tmp_path, "'clamp'", "-clamp_group")
+
+
+def test_missing_load_group(beam, tmp_path):
+    expect_error(["-mesh", beam, "-load_group", "nowhere"], tmp_path, "'nowhere'", "-load_group")
+
+
+def test_young_modulus_not_positive(beam, tmp_path):
+    expect_error(["-mesh", beam, "-load_group", "tip", "-material_aluminium_E", "0"], tmp_path, "Young", "-material_aluminium_E")
+
+
+@pytest.mark.parametrize("nu", ["0.5", "-1", "0.7"])
+def test_poisson_ratio_out_of_range(beam, tmp_path, nu):
+    expect_error(["-mesh", beam, "-load_group", "tip", "-material_aluminium_nu", nu], tmp_path, "Poisson", "(-1, 0.5)")
+
+
+def test_non_hexahedral_cell(tmp_path):
+    tets = tmp_path / "tets.msh"
+    gmsh_script(f"""
+gmsh.model.add('t')
+v = gmsh.model.occ.addBox(0, 0, 0, 0.1, 0.02, 0.01)
+gmsh.model.occ.synchronize()
+gmsh.model.addPhysicalGroup(3, [v], 1); gmsh.model.setPhysicalName(3, 1, 'plate')
+left = [t for d, t in gmsh.model.getBoundary([(3, v)], oriented=False) if abs(gmsh.model.occ.getCenterOfMass(2, t)[0]) < 1e-9]
+gmsh.model.addPhysicalGroup(2, left, 2); gmsh.model.setPhysicalName(2, 2, 'clamp')
+gmsh.option.setNumber('Mesh.MeshSizeMax', 0.02)
+gmsh.model.mesh.generate(3)
+gmsh.write({str(tets)!r})""", tmp_path)
+    expect_error(["-mesh", tets], tmp_path, "hexahedra")
+
+
+def test_unknown_option_in_scene_file(beam, tmp_path):
+    scene = tmp_path / "scene.yaml"
+    scene.write_text(f"mesh: {beam}\nload_group: tip\nmodal_nev: 1\nload_forse: 10\n")
+    expect_error(["-options_file", scene], tmp_path, "-load_forse", "-help")
+
+
+def test_unwritable_output_dir(beam, tmp_path):
+    proc = run_boltrom(["-mesh", beam, "-load_group", "tip", "-modal_nev", "0", "-output_dir", "/proc/boltrom-out"], check=False)
+    assert proc.returncode != 0 and "output directory" in proc.stderr
+
+
+def test_help_lists_options():
+    proc = run_boltrom(["-help"])
+    for opt in ("-mesh", "-element", "-clamp_group", "-partitioner", "-part_material", "-material_steel_E",
+                "-rayleigh_alpha", "-rayleigh_beta", "-contact_penalty_factor", "-load_group", "-load_force",
+                "-preload_force", "-probe_group", "-output_dir", "-summary", "-modal_nev", "-static_ksp_type",
+                "-modal_eps_nev"):
+        assert opt in proc.stdout, opt
