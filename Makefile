@@ -16,7 +16,7 @@ SLEPC_VARS := $(wildcard $(SLEPC_DIR)/lib/slepc/conf/slepc_variables)
 ifeq ($(SLEPC_VARS),)
 # Nothing installed yet: install the stack, then run the same goal again.
 .DEFAULT_GOAL := all
-all bin/boltrom run test bench mesh tests-c:
+all bin/boltrom run test bench mesh tests-c verify:
 	bash scripts/install-deps
 	$(MAKE) $@
 else
@@ -69,6 +69,11 @@ mesh: deps $(MESH_LEVEL1)
 run: deps all $(MESH_LEVEL1)
 	mpiexec -n $(NP) bin/boltrom -options_file inputs/tied-joint.yaml -mesh $(MESH_LEVEL1) \
 	  -output_dir output/tied-joint -summary output/tied-joint/summary.json
+	$(PYTHON) python/plot_static.py output/tied-joint/joint.h5 output/tied-joint/static.png
+
+# Verification figures quoted in the README (cantilever, joint over levels, partitioners).
+verify: deps all
+	$(PYTHON) scripts/verify-model --levels 1 2 3 --np $(NP)
 
 test: deps all
 	$(PYTHON) -m pytest -q tests
@@ -76,5 +81,5 @@ test: deps all
 clean:
 	rm -rf build bin
 
-.PHONY: all deps run test mesh clean tests-c
+.PHONY: all deps run test mesh clean tests-c verify
 endif
