@@ -17,7 +17,8 @@
 typedef struct {
   PetscLogEvent meshRead, meshDistribute, assembly, contactSetUp, contactAssembly, loads;
   PetscLogEvent factorization, staticSolve, modalSolve, output;
-  PetscLogStage stageSetUp, stageStatic, stageModal, stageOutput;
+  PetscLogEvent contactStiffness, displacements, contactForces; /* the paper's Table 2 phases */
+  PetscLogStage stageSetUp, stageStatic, stageModal, stageOutput, stagePreload, stageTransient;
 } BoltLog;
 extern BoltLog boltLog;
 PetscErrorCode BoltLogRegister(void);
@@ -111,14 +112,43 @@ typedef struct {
   PetscReal           matchTolerance;              /* relative to the mesh size */
   PetscInt            nelem;
   BoltContactElement *elem;
+  /* state at the Gauss points (4 per element), set up by BoltContactSetSetUpState */
+  PetscBool           augment;        /* augmented Lagrangian (false: pure penalty, lambda = 0) */
+  PetscBool           warmStart;      /* keep the multipliers across outer iterations and steps */
+  PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
+  PetscReal          *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
+  PetscBool          *active, *activeOld, *activeOlder;
+  PetscInt           *elemLocal;      /* 24 per element: index in the local contact vector, -1 if clamped */
+  PetscInt            nlocal;         /* length of the local contact vector */
+  PetscInt           *localGlobal;    /* its global DOFs */
+  Vec                 uc, fc;         /* local contact displacements and forces (sequential) */
+  VecScatter          scatter;        /* global displacement -> uc */
+  PetscReal          *Ke;             /* 576 per element: stiffness of its active Gauss points */
+  PetscBool          *dirty;          /* element whose activity changed since its Ke was built */
+  Mat                 Kc;             /* contact stiffness in the global layout (COO) */
+  PetscInt            nactive, ngpGlobal;
 } BoltContactSet;
 
 PetscErrorCode BoltContactSetCreate(BoltMesh *, BoltContactSet **);
 PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *);
 PetscErrorCode BoltContactSetSetUp(BoltContactSet *);
 PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *, Mat, Mat *);
+PetscErrorCode BoltContactSetSetUpState(BoltContactSet *, Vec);
+PetscErrorCode BoltContactSetResetState(BoltContactSet *);
+PetscErrorCode BoltContactSetScatter(BoltContactSet *, Vec);
+PetscErrorCode BoltContactSetGaps(BoltContactSet *);
+PetscErrorCode BoltContactSetAugment(BoltContactSet *, PetscReal *, PetscReal *);
+PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *, PetscInt *, PetscBool *);
+PetscErrorCode BoltContactSetForces(BoltContactSet *);
+PetscErrorCode BoltContactSetStiffness(BoltContactSet *, Mat *);
+PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *, PetscReal[]);
+PetscErrorCode BoltContactSetTractionStats(BoltContactSet *, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode BoltContactSetView(BoltContactSet *, PetscViewer);
 PetscErrorCode BoltContactSetDestroy(BoltContactSet **);
+
+/* contact_law.c: the law at one Gauss point */
+void      BoltContactTrialTraction(const PetscReal[3], const PetscReal[3], const PetscReal[3], PetscReal, PetscReal, PetscReal[3]);
+PetscBool BoltContactIsActive(const PetscReal[3], const PetscReal[3]);
 
 /* ------------------------------------------------------------------ loads.c */
 typedef struct {
@@ -142,6 +172,60 @@ PetscErrorCode BoltLoadSetProbe(BoltLoadSet *, Vec, PetscReal *);
 PetscErrorCode BoltLoadSetView(BoltLoadSet *, PetscViewer);
 PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **);
 
+/* ------------------------------------------------------------------ operator + newmark.c */
+/* What the time integrator needs of a model, full or reduced: its matrices in its own
+   coordinates and the maps to and from the contact DOFs. FOM and ROM both provide one. */
+typedef struct BoltOperator_s BoltOperator;
+struct BoltOperator_s {
+  const char      *name;     /* "FOM" or "ROM" */
+  char             prefix[16]; /* options prefix of its solver: fom_ or rom_ */
+  Mat              M, C, K;
+  Vec              load, preload; /* external load pattern and preload, in its coordinates */
+  BoltContactSet  *contact;
+  void            *ctx;
+  PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);   /* q -> contact->uc */
+  PetscErrorCode (*contactForces)(BoltOperator *, Vec);          /* contact->fc -> F (overwritten) */
+  PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);     /* K_c of the active set */
+  PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
+};
+
+typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1 } BoltLoadHistory;
+
+typedef struct {
+  BoltOperator   *op;
+  PetscReal       beta, gamma, dt, tEnd;
+  BoltLoadHistory history;
+  PetscReal       frequency;
+  PetscInt        maxOuter, maxInner;
+  PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
+  PetscBool       continueOnFailure, monitor;
+  PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
+  Mat             K0, Keff;
+  KSP             ksp;
+  PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */
+  PetscBool       dynamic; /* K0 holds a1 M + a4 C + K (else K: static) */
+  Vec             q, v, acc, rhs, Fc, work;
+  PetscInt        nsteps, step;
+  PetscReal      *probeTime, *probeValue, *energy;
+  /* counters and phase times (the paper's Table 2) */
+  PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
+  PetscReal       tContactStiffness, tDisplacements, tContactForces, tOnline;
+  PetscReal       staticOuter, staticInner;
+  PetscReal       lastChange, lastPenetration; /* of the last augmentation */
+} BoltNewmark;
+
+PetscErrorCode BoltNewmarkCreate(BoltOperator *, BoltNewmark **);
+PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *);
+PetscErrorCode BoltNewmarkSetUp(BoltNewmark *);
+PetscErrorCode BoltNewmarkPreload(BoltNewmark *);
+PetscErrorCode BoltNewmarkRun(BoltNewmark *);
+PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
+PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
+
+/* fom.c: the full-order operator */
+PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltOperator **);
+PetscErrorCode BoltFOMDestroy(BoltOperator **);
+
 /* ------------------------------------------------------------------ analysis.c */
 PetscErrorCode BoltStaticSolve(Mat, Vec, Vec, const char[]);
 PetscErrorCode BoltModalSolve(Mat, Mat, PetscInt, const char[], PetscInt *, PetscReal[]);
@@ -162,6 +246,7 @@ typedef struct {
 PetscErrorCode BoltOutputOpen(BoltMesh *, const char[], const char[], BoltOutput *);
 PetscErrorCode BoltOutputVertexField(BoltOutput *, BoltMesh *, Vec, const char[]);
 PetscErrorCode BoltOutputClose(BoltOutput *, BoltMesh *);
+PetscErrorCode BoltOutputSeries(BoltOutput *, const char[], const char[], PetscInt, const PetscReal[]);
 
 /* JSON summary: a flat writer for the keys the README documents. */
 typedef struct {

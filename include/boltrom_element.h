@@ -42,6 +42,13 @@ PetscErrorCode Hex8Stress(const PetscReal X[24], const PetscReal u[24], PetscRea
    [u_a (4 nodes x 3), u_b (4 nodes x 3)]: Kc = int B' P B dA with B = [-N, N]. */
 PetscErrorCode QuadPairPenaltyStiffness(const PetscReal Xa[12], PetscReal epsN, PetscReal epsT, PetscReal Kc[576]);
 
+/* The same, with only the Gauss points flagged in active[4] contributing. */
+PetscErrorCode QuadPairPenaltyStiffnessActive(const PetscReal Xa[12], PetscReal epsN, PetscReal epsT, const PetscBool active[4], PetscReal Kc[576]);
+
+/* Gauss point data of the face: shape values N[4*gp + a], area weights w[gp] (Gauss weight x
+   surface Jacobian), unit normals n[3*gp + k] (right-hand rule of the node order). */
+PetscErrorCode QuadGaussPoints(const PetscReal Xa[12], PetscReal N[16], PetscReal w[4], PetscReal n[12]);
+
 /* Area of the bilinear quad face (2x2 Gauss). */
 PetscErrorCode QuadArea(const PetscReal X[12], PetscReal *area);
 

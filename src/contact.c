@@ -12,6 +12,8 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   PetscCall(PetscNew(&c));
   c->mesh           = mesh;
   c->penaltyFactor  = 200.0;
+  c->augment        = PETSC_TRUE;
+  c->warmStart      = PETSC_FALSE;
   c->matchTolerance = 1e-6;
   *cs               = c;
   PetscFunctionReturn(0);
@@ -22,6 +24,8 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscFunctionBeginUser;
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m]", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
+  PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
+  PetscCall(PetscOptionsBool("-contact_warm_start", "Keep the multipliers across outer iterations and steps (false: reset to zero per outer iteration, as the paper)", NULL, c->warmStart, &c->warmStart, NULL));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscOptionsEnd();
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
@@ -353,8 +357,14 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
     c->pairPart[p][0] = partA;
     c->pairPart[p][1] = partB;
     {
-      PetscReal Ea = m->materials.mat[m->partMaterial[partA]].E, Eb = m->materials.mat[m->partMaterial[partB]].E;
-      c->epsN[p] = c->epsT[p] = c->penaltyFactor * PetscMin(Ea, Eb);
+      PetscReal Ea = m->materials.mat[m->partMaterial[partA]].E, Eb = m->materials.mat[m->partMaterial[partB]].E, factor = c->penaltyFactor;
+      char      opt[BOLTROM_NAME_LEN + 48];
+      PetscCall(PetscSNPrintf(opt, sizeof(opt), "-contact_%s_penalty_factor", c->pairName[p]));
+      PetscOptionsBegin(m->comm, NULL, "Contact pair", "boltrom");
+      PetscCall(PetscOptionsReal(opt, "Penalty of this pair, x E of its softer part, per metre", NULL, factor, &factor, NULL));
+      PetscOptionsEnd();
+      PetscCheck(factor > 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be > 0 (got %g)", opt, (double)factor);
+      c->epsN[p] = c->epsT[p] = factor * PetscMin(Ea, Eb);
     }
   }
   PetscCall(PetscBTDestroy(&ghost));
@@ -418,6 +428,278 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
   PetscFunctionBeginUser;
   if (!*cs) PetscFunctionReturn(0);
   PetscCall(PetscFree((*cs)->elem));
+  PetscCall(PetscFree3((*cs)->gpN, (*cs)->gpW, (*cs)->gpNormal));
+  PetscCall(PetscFree2((*cs)->lambda, (*cs)->gap));
+  PetscCall(PetscFree3((*cs)->active, (*cs)->activeOld, (*cs)->activeOlder));
+  PetscCall(PetscFree((*cs)->elemLocal));
+  PetscCall(PetscFree((*cs)->Ke));
+  PetscCall(PetscFree((*cs)->dirty));
+  PetscCall(PetscFree((*cs)->localGlobal));
+  PetscCall(VecDestroy(&(*cs)->uc));
+  PetscCall(VecDestroy(&(*cs)->fc));
+  PetscCall(VecScatterDestroy(&(*cs)->scatter));
+  PetscCall(MatDestroy(&(*cs)->Kc));
   PetscCall(PetscFree(*cs));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------ contact state */
+
+/* Gauss-point data, the local contact vector and its scatter, and the K_c pattern. Every
+   Gauss point starts active with zero multipliers (the paper's initial state). */
+PetscErrorCode BoltContactSetSetUpState(BoltContactSet *c, Vec layout)
+{
+  PetscInt   ne = c->nelem, n = 0, *glob, *perm;
+  IS         isGlobal;
+  PetscInt  *ci, *cj, ncoo = 576 * ne, m_, M_;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc3(16 * ne + 1, &c->gpN, 4 * ne + 1, &c->gpW, 12 * ne + 1, &c->gpNormal));
+  PetscCall(PetscCalloc2(12 * ne + 1, &c->lambda, 12 * ne + 1, &c->gap));
+  PetscCall(PetscMalloc3(4 * ne + 1, &c->active, 4 * ne + 1, &c->activeOld, 4 * ne + 1, &c->activeOlder));
+  PetscCall(PetscMalloc1(24 * ne + 1, &c->elemLocal));
+  PetscCall(PetscMalloc1(576 * ne + 1, &c->Ke));
+  PetscCall(PetscMalloc1(ne + 1, &c->dirty));
+  for (PetscInt e = 0; e < ne; e++) {
+    PetscCall(QuadGaussPoints(c->elem[e].Xa, &c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e]));
+    c->dirty[e] = PETSC_TRUE;
+  }
+  /* local contact vector: the distinct global DOFs the local elements touch */
+  PetscCall(PetscMalloc2(24 * ne + 1, &glob, 24 * ne + 1, &perm));
+  for (PetscInt e = 0; e < ne; e++)
+    for (PetscInt k = 0; k < 24; k++)
+      if (c->elem[e].dofs[k] >= 0) glob[n++] = c->elem[e].dofs[k];
+  PetscCall(PetscSortRemoveDupsInt(&n, glob));
+  c->nlocal = n;
+  PetscCall(PetscMalloc1(n + 1, &c->localGlobal));
+  PetscCall(PetscArraycpy(c->localGlobal, glob, n));
+  for (PetscInt e = 0; e < ne; e++)
+    for (PetscInt k = 0; k < 24; k++) {
+      PetscInt d = c->elem[e].dofs[k], loc = -1;
+      if (d >= 0) PetscCall(PetscFindInt(d, n, c->localGlobal, &loc));
+      c->elemLocal[24 * e + k] = loc;
+    }
+  PetscCall(PetscFree2(glob, perm));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &c->uc));
+  PetscCall(VecDuplicate(c->uc, &c->fc));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, c->localGlobal, PETSC_COPY_VALUES, &isGlobal));
+  PetscCall(VecScatterCreate(layout, isGlobal, c->uc, NULL, &c->scatter));
+  PetscCall(ISDestroy(&isGlobal));
+  /* K_c: one COO entry per element matrix entry, fixed pattern of all elements */
+  PetscCall(VecGetLocalSize(layout, &m_));
+  PetscCall(VecGetSize(layout, &M_));
+  PetscCall(MatCreate(c->mesh->comm, &c->Kc));
+  PetscCall(MatSetSizes(c->Kc, m_, m_, M_, M_));
+  PetscCall(MatSetType(c->Kc, MATAIJ));
+  PetscCall(PetscObjectSetName((PetscObject)c->Kc, "Kc"));
+  PetscCall(PetscMalloc2(ncoo + 1, &ci, ncoo + 1, &cj));
+  for (PetscInt e = 0; e < ne; e++)
+    for (PetscInt i = 0; i < 24; i++)
+      for (PetscInt j = 0; j < 24; j++) {
+        ci[576 * e + 24 * i + j] = c->elem[e].dofs[i];
+        cj[576 * e + 24 * i + j] = c->elem[e].dofs[j];
+      }
+  PetscCall(MatSetPreallocationCOO(c->Kc, ncoo, ci, cj));
+  PetscCall(PetscFree2(ci, cj));
+  {
+    PetscInt ngp = 4 * ne;
+    PetscCall(MPIU_Allreduce(&ngp, &c->ngpGlobal, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+  }
+  PetscCall(BoltContactSetResetState(c));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactSetResetState(BoltContactSet *c)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt g = 0; g < 4 * c->nelem; g++) c->active[g] = c->activeOld[g] = c->activeOlder[g] = PETSC_TRUE;
+  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
+  PetscCall(PetscArrayzero(c->lambda, 12 * c->nelem));
+  PetscCall(PetscArrayzero(c->gap, 12 * c->nelem));
+  c->nactive = c->ngpGlobal;
+  PetscFunctionReturn(0);
+}
+
+/* uc <- the contact DOFs of a global displacement vector (the FOM's way). */
+PetscErrorCode BoltContactSetScatter(BoltContactSet *c, Vec u)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(c->scatter, u, c->uc, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(c->scatter, u, c->uc, INSERT_VALUES, SCATTER_FORWARD));
+  PetscFunctionReturn(0);
+}
+
+/* Gap vectors g = u_b - u_a at every Gauss point, from uc. */
+PetscErrorCode BoltContactSetGaps(BoltContactSet *c)
+{
+  const PetscScalar *u;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(c->uc, &u));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt *loc = &c->elemLocal[24 * e];
+    for (PetscInt q = 0; q < 4; q++) {
+      const PetscReal *N = &c->gpN[16 * e + 4 * q];
+      PetscReal       *g = &c->gap[12 * e + 3 * q];
+      for (PetscInt k = 0; k < 3; k++) {
+        PetscReal v = 0;
+        for (PetscInt a = 0; a < 4; a++) {
+          PetscInt ia = loc[3 * a + k], ib = loc[12 + 3 * a + k];
+          v += N[a] * ((ib >= 0 ? PetscRealPart(u[ib]) : 0) - (ia >= 0 ? PetscRealPart(u[ia]) : 0));
+        }
+        g[k] = v;
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(c->uc, &u));
+  PetscFunctionReturn(0);
+}
+
+/* One augmentation: lambda <- trial traction at active points, 0 elsewhere. Returns the
+   relative change of the multipliers and the largest penetration (-g.n) of an active point. */
+PetscErrorCode BoltContactSetAugment(BoltContactSet *c, PetscReal *relChange, PetscReal *maxPenetration)
+{
+  PetscReal loc[3] = {0, 0, 0}, glob[3];
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt pair = c->elem[e].pair;
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt         gp = 4 * e + q;
+      PetscReal       *lam = &c->lambda[3 * gp], t[3] = {0, 0, 0};
+      const PetscReal *g = &c->gap[3 * gp], *n = &c->gpNormal[3 * gp];
+      if (c->active[gp] && c->augment) BoltContactTrialTraction(lam, g, n, c->epsN[pair], c->epsT[pair], t);
+      for (PetscInt k = 0; k < 3; k++) {
+        loc[0] += PetscSqr(t[k] - lam[k]);
+        loc[1] += PetscSqr(t[k]);
+        lam[k] = t[k];
+      }
+      if (c->active[gp]) loc[2] = PetscMax(loc[2], -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]));
+    }
+  }
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&loc[2], &glob[2], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
+  *maxPenetration = glob[2];
+  PetscFunctionReturn(0);
+}
+
+/* New active set from the trial tractions; counts the points that changed (global) and tells
+   whether the set equals the one two outer iterations back (cycling between two sets). */
+PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged, PetscBool *cycling)
+{
+  PetscInt loc[3] = {0, 0, 0}, glob[3];
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt pair = c->elem[e].pair;
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt  gp = 4 * e + q;
+      PetscReal t[3];
+      PetscBool now;
+      BoltContactTrialTraction(&c->lambda[3 * gp], &c->gap[3 * gp], &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], t);
+      if (c->active[gp] && c->augment) now = BoltContactIsActive(&c->lambda[3 * gp], &c->gpNormal[3 * gp]); /* lambda is the converged traction */
+      else now = BoltContactIsActive(t, &c->gpNormal[3 * gp]);
+      c->activeOlder[gp] = c->activeOld[gp];
+      c->activeOld[gp]   = c->active[gp];
+      if (now != c->active[gp]) {
+        loc[0]++;
+        c->dirty[e] = PETSC_TRUE;
+        if (!now) c->lambda[3 * gp] = c->lambda[3 * gp + 1] = c->lambda[3 * gp + 2] = 0;
+      }
+      c->active[gp] = now;
+      if (now) loc[1]++;
+      if (now != c->activeOlder[gp]) loc[2]++;
+    }
+  }
+  PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
+  *nchanged  = glob[0];
+  c->nactive = glob[1];
+  *cycling   = (glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* fc = the contact forces of the multipliers on the local contact DOFs: -N' lambda on side a,
+   +N' lambda on side b (they enter the equations as K q + B' lambda = F). */
+PetscErrorCode BoltContactSetForces(BoltContactSet *c)
+{
+  PetscScalar *f;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(c->fc));
+  PetscCall(VecGetArray(c->fc, &f));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt *loc = &c->elemLocal[24 * e];
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt         gp = 4 * e + q;
+      const PetscReal *N = &c->gpN[16 * e + 4 * q], *lam = &c->lambda[3 * gp], w = c->gpW[gp];
+      if (lam[0] == 0 && lam[1] == 0 && lam[2] == 0) continue;
+      for (PetscInt a = 0; a < 4; a++)
+        for (PetscInt k = 0; k < 3; k++) {
+          PetscInt ia = loc[3 * a + k], ib = loc[12 + 3 * a + k];
+          if (ia >= 0) f[ia] -= w * N[a] * lam[k];
+          if (ib >= 0) f[ib] += w * N[a] * lam[k];
+        }
+    }
+  }
+  PetscCall(VecRestoreArray(c->fc, &f));
+  PetscFunctionReturn(0);
+}
+
+/* K_c of the active Gauss points in the global layout; only elements whose activity changed
+   are recomputed. */
+PetscErrorCode BoltContactSetStiffness(BoltContactSet *c, Mat *Kc)
+{
+  PetscScalar *v;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    if (!c->dirty[e]) continue;
+    PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], &c->active[4 * e], &c->Ke[576 * e]));
+    c->dirty[e] = PETSC_FALSE;
+  }
+#if defined(PETSC_USE_COMPLEX)
+  SETERRQ(c->mesh->comm, PETSC_ERR_SUP, "Real scalars only");
+#else
+  v = (PetscScalar *)c->Ke;
+#endif
+  PetscCall(MatSetValuesCOO(c->Kc, v, INSERT_VALUES));
+  *Kc = c->Kc;
+  PetscFunctionReturn(0);
+}
+
+/* Sum over each pair of the normal contact force, int lambda.n dA (negative in compression). */
+PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *c, PetscReal force[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt p = 0; p < c->npairs; p++) force[p] = 0;
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt         gp = 4 * e + q;
+      const PetscReal *lam = &c->lambda[3 * gp], *n = &c->gpNormal[3 * gp];
+      force[c->elem[e].pair] += c->gpW[gp] * (lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2]);
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, force, (PetscMPIInt)c->npairs, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Min and max normal traction over active points, and the largest tangential traction. */
+PetscErrorCode BoltContactSetTractionStats(BoltContactSet *c, PetscReal *tnMin, PetscReal *tnMax, PetscReal *ttMax)
+{
+  PetscReal mn = PETSC_MAX_REAL, mx = -PETSC_MAX_REAL, tt = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    const PetscReal *lam = &c->lambda[3 * gp], *n = &c->gpNormal[3 * gp];
+    PetscReal        ln = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2], t2 = 0;
+    if (!c->active[gp]) continue;
+    mn = PetscMin(mn, ln);
+    mx = PetscMax(mx, ln);
+    for (PetscInt k = 0; k < 3; k++) t2 += PetscSqr(lam[k] - ln * n[k]);
+    tt = PetscMax(tt, PetscSqrtReal(t2));
+  }
+  PetscCall(MPIU_Allreduce(&mn, tnMin, 1, MPIU_REAL, MPI_MIN, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&mx, tnMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&tt, ttMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   PetscFunctionReturn(0);
 }

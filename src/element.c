@@ -345,12 +345,37 @@ PetscErrorCode QuadArea(const PetscReal X[12], PetscReal *area)
 
 PetscErrorCode QuadPairPenaltyStiffness(const PetscReal Xa[12], PetscReal epsN, PetscReal epsT, PetscReal Kc[576])
 {
+  const PetscBool all[4] = {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE};
+
+  PetscFunctionBeginUser;
+  PetscCall(QuadPairPenaltyStiffnessActive(Xa, epsN, epsT, all, Kc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode QuadGaussPoints(const PetscReal Xa[12], PetscReal N[16], PetscReal w[4], PetscReal n[12])
+{
+  PetscReal c[3], scale, dA;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4; gp++) {
+    PetscCall(QuadGauss(Xa, gp, &N[4 * gp], c, &scale));
+    dA = PetscSqrtReal(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    PetscCheck(dA > HEX8_DEGENERATE * scale, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Quad face degenerate at Gauss point %" PetscInt_FMT ": |t1 x t2| = %g, no normal", gp, (double)dA);
+    w[gp] = dA;
+    for (PetscInt k = 0; k < 3; k++) n[3 * gp + k] = c[k] / dA;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode QuadPairPenaltyStiffnessActive(const PetscReal Xa[12], PetscReal epsN, PetscReal epsT, const PetscBool active[4], PetscReal Kc[576])
+{
   PetscReal M[144] = {0}, N[4], c[3], n[3], P[9], dA, scale;
   PetscInt  gp, a, b, k, l;
 
   PetscFunctionBeginUser;
   PetscCheck(epsN >= 0 && epsT >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Penalty parameters must be non-negative: epsN = %g, epsT = %g", (double)epsN, (double)epsT);
   for (gp = 0; gp < 4; gp++) {
+    if (!active[gp]) continue;
     PetscCall(QuadGauss(Xa, gp, N, c, &scale));
     dA = PetscSqrtReal(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
     PetscCheck(dA > HEX8_DEGENERATE * scale, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Quad face degenerate at Gauss point %" PetscInt_FMT ": |t1 x t2| = %g, no normal", gp, (double)dA);

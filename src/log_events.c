@@ -22,7 +22,12 @@ PetscErrorCode BoltLogRegister(void)
   PetscCall(PetscLogEventRegister("BoltStaticSolve", classid, &boltLog.staticSolve));
   PetscCall(PetscLogEventRegister("BoltModalSolve", classid, &boltLog.modalSolve));
   PetscCall(PetscLogEventRegister("BoltOutput", classid, &boltLog.output));
+  PetscCall(PetscLogEventRegister("ContactStiffness", classid, &boltLog.contactStiffness));
+  PetscCall(PetscLogEventRegister("Displacements", classid, &boltLog.displacements));
+  PetscCall(PetscLogEventRegister("ContactForces", classid, &boltLog.contactForces));
   PetscCall(PetscLogStageRegister("Model set-up", &boltLog.stageSetUp));
+  PetscCall(PetscLogStageRegister("Preload", &boltLog.stagePreload));
+  PetscCall(PetscLogStageRegister("Transient", &boltLog.stageTransient));
   PetscCall(PetscLogStageRegister("Static solve", &boltLog.stageStatic));
   PetscCall(PetscLogStageRegister("Modal solve", &boltLog.stageModal));
   PetscCall(PetscLogStageRegister("Output", &boltLog.stageOutput));

@@ -8,7 +8,7 @@ typedef struct {
   char      outputDir[PETSC_MAX_PATH_LEN];
   char      outputName[BOLTROM_NAME_LEN];
   char      summary[PETSC_MAX_PATH_LEN];
-  PetscBool staticSolve, verifyFields, checkRigid, writeOutput;
+  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom;
   PetscInt  verifyField; /* 0 smooth, 1 linear */
   PetscInt  nev;
 } BoltRunOptions;
@@ -24,6 +24,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   o->checkRigid   = PETSC_FALSE;
   o->writeOutput  = PETSC_TRUE;
   o->nev          = 3;
+  o->fom          = PETSC_FALSE;
   o->verifyField  = 0;
   PetscOptionsBegin(comm, NULL, "Run", "boltrom");
   PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
@@ -31,6 +32,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   PetscCall(PetscOptionsBool("-output", "Write the HDF5/XDMF results", NULL, o->writeOutput, &o->writeOutput, NULL));
   PetscCall(PetscOptionsString("-summary", "Write a JSON summary to this file (keys in the README)", NULL, o->summary, o->summary, sizeof(o->summary), NULL));
   PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
+  PetscCall(PetscOptionsBool("-fom", "Run the full-order model with contact: static preload, then the Newmark transient", NULL, o->fom, &o->fom, NULL));
   PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
   PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));
   {
@@ -116,6 +118,10 @@ static PetscErrorCode BoltRun(void)
   BoltContactSet *contact;
   BoltLoadSet    *loads;
   Mat             Ktied = NULL;
+  BoltOperator   *fomOp = NULL;
+  BoltNewmark    *fomNm = NULL;
+  PetscReal       preloadForce[BOLTROM_MAX_PAIRS], tractionStats[3] = {0, 0, 0}, staticPenetration = 0, staticChange = 0;
+  PetscInt        preloadActive = 0;
   Vec             u = NULL, x = NULL, Kx = NULL, Mx = NULL;
   PetscReal       probe = 0, freq[100], rigid[BOLTROM_MAX_PARTS];
   PetscInt        nconv = 0;
@@ -249,6 +255,30 @@ static PetscErrorCode BoltRun(void)
       PetscCall(PetscPrintf(comm, "Rigid motions of part %s: max |K r| / (|K| |r|) = %.3e\n", mesh->partName[p], (double)rigid[p]));
     }
   }
+  if (opt.fom) {
+    PetscReal force[BOLTROM_MAX_PAIRS];
+    PetscCall(BoltContactSetSetUpState(contact, u));
+    PetscCall(BoltFOMCreate(asmb, contact, loads, &fomOp));
+    PetscCall(BoltNewmarkCreate(fomOp, &fomNm));
+    PetscCall(BoltNewmarkSetFromOptions(fomNm));
+    PetscCall(BoltNewmarkSetUp(fomNm));
+    PetscCall(PetscLogStagePush(boltLog.stagePreload));
+    PetscCall(BoltNewmarkPreload(fomNm));
+    PetscCall(PetscLogStagePop());
+    PetscCall(BoltContactSetNormalForcePerPair(contact, force));
+    PetscCall(PetscPrintf(comm, "Preload %g N: static contact solve in %g outer / %g inner iterations; normal force per pair [N]:", (double)loads->preloadForce, (double)fomNm->staticOuter, (double)fomNm->staticInner));
+    for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(PetscPrintf(comm, " %s %.6f", contact->pairName[p], (double)force[p]));
+    PetscCall(PetscPrintf(comm, "\n"));
+    for (PetscInt p = 0; p < contact->npairs; p++) preloadForce[p] = force[p];
+    PetscCall(BoltContactSetTractionStats(contact, &tractionStats[0], &tractionStats[1], &tractionStats[2]));
+    preloadActive = contact->nactive;
+    staticPenetration = fomNm->lastPenetration;
+    staticChange      = fomNm->lastChange;
+    PetscCall(PetscLogStagePush(boltLog.stageTransient));
+    PetscCall(BoltNewmarkRun(fomNm));
+    PetscCall(PetscLogStagePop());
+    PetscCall(BoltNewmarkView(fomNm, out));
+  }
   /* every option must have been used before anything is written */
   PetscCall(BoltCheckUnusedOptions(comm));
 
@@ -259,6 +289,12 @@ static PetscErrorCode BoltRun(void)
     if (opt.staticSolve) PetscCall(BoltOutputVertexField(&h5, mesh, u, "displacement"));
     PetscCall(BoltOutputVertexField(&h5, mesh, loads->load, "load"));
     if (loads->hasPreload) PetscCall(BoltOutputVertexField(&h5, mesh, loads->preload, "preload"));
+    if (opt.fom) {
+      PetscCall(BoltOutputVertexField(&h5, mesh, fomNm->q, "fom_final_displacement"));
+      PetscCall(BoltOutputSeries(&h5, "/fom", "time", fomNm->nsteps + 1, fomNm->probeTime));
+      PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fomNm->nsteps + 1, fomNm->probeValue));
+      PetscCall(BoltOutputSeries(&h5, "/fom", "energy", fomNm->nsteps + 1, fomNm->energy));
+    }
     if (opt.verifyFields) {
       PetscCall(BoltOutputVertexField(&h5, mesh, x, "x"));
       PetscCall(BoltOutputVertexField(&h5, mesh, Kx, "Kx"));
@@ -322,6 +358,49 @@ static PetscErrorCode BoltRun(void)
       for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONReal(&j, mesh->partName[p], rigid[p]));
       PetscCall(BoltJSONEndObject(&j));
     }
+    if (opt.fom) {
+      PetscCall(BoltJSONBeginObject(&j, "preload"));
+      PetscCall(BoltJSONReal(&j, "force", loads->preloadForce));
+      PetscCall(BoltJSONReal(&j, "outer", fomNm->staticOuter));
+      PetscCall(BoltJSONReal(&j, "inner", fomNm->staticInner));
+      PetscCall(BoltJSONReal(&j, "penetration_max", staticPenetration));
+      PetscCall(BoltJSONReal(&j, "multiplier_change", staticChange));
+      PetscCall(BoltJSONReal(&j, "traction_normal_min", tractionStats[0]));
+      PetscCall(BoltJSONReal(&j, "traction_normal_max", tractionStats[1]));
+      PetscCall(BoltJSONReal(&j, "traction_tangential_max", tractionStats[2]));
+      PetscCall(BoltJSONInt(&j, "active_points", preloadActive));
+      PetscCall(BoltJSONBeginObject(&j, "normal_force_per_pair"));
+      for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONReal(&j, contact->pairName[p], preloadForce[p]));
+      PetscCall(BoltJSONEndObject(&j));
+      PetscCall(BoltJSONEndObject(&j));
+      PetscCall(BoltJSONBeginObject(&j, "fom"));
+      PetscCall(BoltJSONInt(&j, "steps", fomNm->nsteps));
+      PetscCall(BoltJSONReal(&j, "dt", fomNm->dt));
+      PetscCall(BoltJSONReal(&j, "online_s", fomNm->tOnline));
+      PetscCall(BoltJSONReal(&j, "contact_stiffness_s", fomNm->tContactStiffness));
+      PetscCall(BoltJSONReal(&j, "displacements_s", fomNm->tDisplacements));
+      PetscCall(BoltJSONReal(&j, "contact_forces_s", fomNm->tContactForces));
+      PetscCall(BoltJSONInt(&j, "factorizations", fomNm->factorizations));
+      PetscCall(BoltJSONInt(&j, "solves", fomNm->solves));
+      PetscCall(BoltJSONInt(&j, "outer_total", fomNm->outerTotal));
+      PetscCall(BoltJSONInt(&j, "inner_total", fomNm->innerTotal));
+      PetscCall(BoltJSONInt(&j, "outer_max", fomNm->outerMax));
+      PetscCall(BoltJSONInt(&j, "inner_max", fomNm->innerMax));
+      PetscCall(BoltJSONInt(&j, "failures", fomNm->failures));
+      PetscCall(BoltJSONInt(&j, "active_points", contact->nactive));
+      PetscCall(BoltJSONInt(&j, "contact_points", contact->ngpGlobal));
+      PetscCall(BoltJSONReal(&j, "probe_final", fomNm->probeValue[fomNm->nsteps]));
+      {
+        PetscReal mn = 0, mx = 0;
+        for (PetscInt i = 0; i <= fomNm->nsteps; i++) {
+          mn = PetscMin(mn, fomNm->probeValue[i]);
+          mx = PetscMax(mx, fomNm->probeValue[i]);
+        }
+        PetscCall(BoltJSONReal(&j, "probe_min", mn));
+        PetscCall(BoltJSONReal(&j, "probe_max", mx));
+      }
+      PetscCall(BoltJSONEndObject(&j));
+    }
     PetscCall(BoltJSONReal(&j, "setup_s", tSetUp));
     PetscCall(BoltJSONClose(&j));
   }
@@ -332,6 +411,8 @@ static PetscErrorCode BoltRun(void)
   PetscCall(VecDestroy(&Kx));
   PetscCall(VecDestroy(&Mx));
   PetscCall(MatDestroy(&Ktied));
+  PetscCall(BoltNewmarkDestroy(&fomNm));
+  PetscCall(BoltFOMDestroy(&fomOp));
   PetscCall(BoltLoadSetDestroy(&loads));
   PetscCall(BoltContactSetDestroy(&contact));
   PetscCall(BoltAssemblerDestroy(&asmb));

@@ -14,7 +14,7 @@ PetscErrorCode BoltMeshCreate(MPI_Comm comm, BoltMesh **mesh)
   m->comm  = comm;
   m->clamp = PETSC_TRUE;
   PetscCall(PetscStrncpy(m->clampGroup, "clamp", sizeof(m->clampGroup)));
-  PetscCall(PetscStrncpy(m->partitioner, "metis", sizeof(m->partitioner)));
+  PetscCall(PetscStrncpy(m->partitioner, "ptscotch", sizeof(m->partitioner))); /* smaller edge cut than METIS from level 2 up (README) */
   PetscCall(PetscStrncpy(m->partMaterialMap, defaultPartMaterials, sizeof(m->partMaterialMap)));
   m->formulation = HEX8_INCOMPATIBLE;
   *mesh          = m;

@@ -198,6 +198,29 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const 
   PetscFunctionReturn(0);
 }
 
+/* A time series known on every rank (e.g. a probe history), written once from rank 0. */
+PetscErrorCode BoltOutputSeries(BoltOutput *out, const char group[], const char name[], PetscInt n, const PetscReal values[])
+{
+  Vec         w;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(out->comm, &rank));
+  PetscCall(VecCreateMPI(out->comm, rank == 0 ? n : 0, n, &w));
+  PetscCall(PetscObjectSetName((PetscObject)w, name));
+  if (rank == 0) {
+    PetscScalar *a;
+    PetscCall(VecGetArray(w, &a));
+    for (PetscInt i = 0; i < n; i++) a[i] = values[i];
+    PetscCall(VecRestoreArray(w, &a));
+  }
+  PetscCall(PetscViewerHDF5PushGroup(out->viewer, group));
+  PetscCall(VecView(w, out->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(out->viewer));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
 {
   PetscMPIInt rank;

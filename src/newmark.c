@@ -1,0 +1,338 @@
+/* Newmark time integration with the dual contact loop (the paper's Algorithm 1), written once
+   against BoltOperator so that the full and the reduced model run literally the same code.
+   Outer loop: the active set, until it stops changing; inner loop: augmentations of the
+   multipliers, until they stop changing and the penetration is small. */
+#include "boltrom.h"
+
+PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
+{
+  BoltNewmark *nm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&nm));
+  nm->op             = op;
+  nm->beta           = 0.25;
+  nm->gamma          = 0.5;
+  nm->dt             = 2.5e-4;
+  nm->tEnd           = 0.1;
+  nm->history        = BOLT_LOAD_STEP;
+  nm->frequency      = 50.0;
+  nm->maxOuter       = 20;
+  nm->maxInner       = 100;
+  nm->tolLambda      = 1e-4;
+  nm->tolPenetration = 1e-9;
+  *nmp               = nm;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)nm->op->K);
+  const char *hist[] = {"step", "sine", "BoltLoadHistory", "BOLT_LOAD_", NULL};
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "Time integration and contact loop", "boltrom");
+  PetscCall(PetscOptionsReal("-ts_dt", "Time step [s]", NULL, nm->dt, &nm->dt, NULL));
+  PetscCall(PetscOptionsReal("-ts_end", "End time [s]", NULL, nm->tEnd, &nm->tEnd, NULL));
+  PetscCall(PetscOptionsReal("-newmark_beta", "Newmark beta", NULL, nm->beta, &nm->beta, NULL));
+  PetscCall(PetscOptionsReal("-newmark_gamma", "Newmark gamma", NULL, nm->gamma, &nm->gamma, NULL));
+  PetscCall(PetscOptionsEnum("-load_history", "Time history of the external load: step (on from t > 0) or sine", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
+  PetscCall(PetscOptionsReal("-load_frequency", "Frequency of the sine load [Hz]", NULL, nm->frequency, &nm->frequency, NULL));
+  PetscCall(PetscOptionsInt("-contact_max_outer", "Outer (active set) iterations per step", NULL, nm->maxOuter, &nm->maxOuter, NULL));
+  PetscCall(PetscOptionsInt("-contact_max_inner", "Inner (augmentation) iterations per outer iteration", NULL, nm->maxInner, &nm->maxInner, NULL));
+  PetscCall(PetscOptionsReal("-contact_tol_lambda", "Tolerance on the relative change of the multipliers", NULL, nm->tolLambda, &nm->tolLambda, NULL));
+  PetscCall(PetscOptionsReal("-contact_tol_penetration", "Tolerance on the largest penetration of an active point [m]", NULL, nm->tolPenetration, &nm->tolPenetration, NULL));
+  PetscCall(PetscOptionsBool("-contact_continue", "On non-convergence, warn and go on instead of stopping", NULL, nm->continueOnFailure, &nm->continueOnFailure, NULL));
+  PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
+  PetscCall(PetscOptionsBool("-monitor", "Print a line per time step", NULL, nm->monitor, &nm->monitor, NULL));
+  PetscOptionsEnd();
+  PetscCheck(nm->dt > 0, comm, PETSC_ERR_USER_INPUT, "-ts_dt must be > 0 (got %g)", (double)nm->dt);
+  PetscCheck(nm->tEnd >= nm->dt, comm, PETSC_ERR_USER_INPUT, "-ts_end (%g) must be at least one time step -ts_dt (%g)", (double)nm->tEnd, (double)nm->dt);
+  PetscCheck(nm->beta > 0 && nm->gamma >= 0.5, comm, PETSC_ERR_USER_INPUT, "Newmark needs beta > 0 and gamma >= 1/2 (got %g, %g)", (double)nm->beta, (double)nm->gamma);
+  PetscCheck(nm->maxOuter >= 1 && nm->maxInner >= 1, comm, PETSC_ERR_USER_INPUT, "-contact_max_outer and -contact_max_inner must be >= 1");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
+{
+  BoltOperator *op = nm->op;
+  PetscReal     b = nm->beta, g = nm->gamma, dt = nm->dt;
+  PC            pc;
+  Mat           Kc, Z;
+
+  PetscFunctionBeginUser;
+  nm->a[1]   = 1.0 / (b * dt * dt);
+  nm->a[2]   = 1.0 / (b * dt);
+  nm->a[3]   = 1.0 / (2 * b) - 1.0;
+  nm->a[4]   = g / (b * dt);
+  nm->a[5]   = g / b - 1.0;
+  nm->a[6]   = dt * (g / (2 * b) - 1.0);
+  nm->nsteps = (PetscInt)PetscFloorReal(nm->tEnd / dt + 1e-9);
+  PetscCall(MatCreateVecs(op->K, &nm->q, NULL));
+  PetscCall(VecDuplicate(nm->q, &nm->v));
+  PetscCall(VecDuplicate(nm->q, &nm->acc));
+  PetscCall(VecDuplicate(nm->q, &nm->rhs));
+  PetscCall(VecDuplicate(nm->q, &nm->Fc));
+  PetscCall(VecDuplicate(nm->q, &nm->work));
+  PetscCall(PetscCalloc3(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy));
+  /* K0 gets the union of the structural and the contact pattern once, so that K_eff = K0 + K_c
+     keeps one pattern and MUMPS repeats only the numeric factorisation */
+  PetscCall(op->contactStiffness(op, &Kc));
+  PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Z));
+  PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &nm->K0));
+  PetscCall(MatAXPY(nm->K0, 1.0, Z, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatDestroy(&Z));
+  PetscCall(MatDuplicate(nm->K0, MAT_COPY_VALUES, &nm->Keff));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)op->K), &nm->ksp));
+  PetscCall(KSPSetOptionsPrefix(nm->ksp, op->prefix));
+  PetscCall(KSPSetType(nm->ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(nm->ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetFromOptions(nm->ksp));
+  PetscFunctionReturn(0);
+}
+
+/* K0 = K (static) or a1 M + a4 C + K (dynamic), in the pattern fixed at set-up. */
+static PetscErrorCode BoltNewmarkSetK0(BoltNewmark *nm, PetscBool dynamic)
+{
+  BoltOperator *op = nm->op;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatZeroEntries(nm->K0));
+  PetscCall(MatAXPY(nm->K0, 1.0, op->K, SUBSET_NONZERO_PATTERN));
+  if (dynamic) {
+    PetscCall(MatAXPY(nm->K0, nm->a[1], op->M, SUBSET_NONZERO_PATTERN));
+    PetscCall(MatAXPY(nm->K0, nm->a[4], op->C, SUBSET_NONZERO_PATTERN));
+  }
+  nm->dynamic = dynamic;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltNewmarkFactor(BoltNewmark *nm)
+{
+  BoltOperator  *op = nm->op;
+  Mat            Kc;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
+  PetscCall(op->contactStiffness(op, &Kc));
+  PetscCall(MatCopy(nm->K0, nm->Keff, SAME_NONZERO_PATTERN));
+  PetscCall(MatAXPY(nm->Keff, 1.0, Kc, SUBSET_NONZERO_PATTERN));
+  PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t1));
+  nm->tContactStiffness += t1 - t0;
+  PetscCall(PetscLogEventBegin(boltLog.factorization, 0, 0, 0, 0));
+  PetscCall(KSPSetOperators(nm->ksp, nm->Keff, nm->Keff));
+  PetscCall(KSPSetUp(nm->ksp));
+  PetscCall(PetscLogEventEnd(boltLog.factorization, 0, 0, 0, 0));
+  {
+    PC            pc;
+    PCFailedReason reason;
+    PetscCall(KSPGetPC(nm->ksp, &pc));
+    PetscCall(PCGetFailedReason(pc, &reason));
+    PetscCheck(reason == PC_NOERROR, PetscObjectComm((PetscObject)nm->Keff), PETSC_ERR_NOT_CONVERGED, "%s: factorisation of the effective stiffness failed (%s) at step %" PetscInt_FMT ", t = %g s: the system is singular (a part held by contact alone lost all contact?)", op->name, PCFailedReasons[reason], nm->step, (double)(nm->step * nm->dt));
+  }
+  PetscCall(PetscTime(&t0));
+  nm->tDisplacements += t0 - t1;
+  nm->factorizations++;
+  PetscFunctionReturn(0);
+}
+
+/* The dual loop for one solve: K_eff q = rhs0 - B' lambda with contact. */
+static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor, PetscInt *nouter, PetscInt *ninner)
+{
+  BoltOperator   *op = nm->op;
+  BoltContactSet *c  = op->contact;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)op->K);
+  PetscReal       t = nm->step * nm->dt;
+  PetscInt        outer, inner = 0, innerTotal = 0;
+
+  PetscFunctionBeginUser;
+  for (outer = 1;; outer++) {
+    PetscReal rel = 0, pen = 0;
+    PetscInt  nchanged;
+    PetscBool cycling;
+
+    if (refactor) PetscCall(BoltNewmarkFactor(nm));
+    if (!c->warmStart) PetscCall(PetscArrayzero(c->lambda, 12 * c->nelem));
+    for (inner = 1;; inner++) {
+      PetscLogDouble t0, t1, t2, t3;
+      PetscCall(PetscTime(&t0));
+      PetscCall(PetscLogEventBegin(boltLog.contactForces, 0, 0, 0, 0));
+      PetscCall(BoltContactSetForces(c));
+      PetscCall(op->contactForces(op, nm->Fc));
+      PetscCall(VecWAXPY(nm->work, -1.0, nm->Fc, rhs0));
+      PetscCall(PetscLogEventEnd(boltLog.contactForces, 0, 0, 0, 0));
+      PetscCall(PetscTime(&t1));
+      PetscCall(PetscLogEventBegin(boltLog.displacements, 0, 0, 0, 0));
+      PetscCall(KSPSolve(nm->ksp, nm->work, nm->q));
+      PetscCall(PetscLogEventEnd(boltLog.displacements, 0, 0, 0, 0));
+      nm->solves++;
+      PetscCall(PetscTime(&t2));
+      PetscCall(PetscLogEventBegin(boltLog.contactForces, 0, 0, 0, 0));
+      PetscCall(op->contactDisplacements(op, nm->q));
+      PetscCall(BoltContactSetGaps(c));
+      PetscCall(BoltContactSetAugment(c, &rel, &pen));
+      PetscCall(PetscLogEventEnd(boltLog.contactForces, 0, 0, 0, 0));
+      PetscCall(PetscTime(&t3));
+      nm->tContactForces += (t1 - t0) + (t3 - t2);
+      nm->tDisplacements += t2 - t1;
+      PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(pen), comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", op->name, nm->step, (double)t);
+      nm->lastChange      = rel;
+      nm->lastPenetration = pen;
+      if (!c->augment) break;
+      if (rel <= nm->tolLambda && pen <= nm->tolPenetration) break;
+      if (inner >= nm->maxInner) {
+        nm->failures++;
+        PetscCheck(nm->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: contact augmentations did not converge at step %" PetscInt_FMT ", t = %g s: after %" PetscInt_FMT " iterations the multipliers change by %.3e (tolerance %.1e) and the penetration is %.3e m (tolerance %.1e); raise -contact_max_inner or loosen -contact_tol_lambda / -contact_tol_penetration, or add -contact_continue to go on with a warning", op->name, nm->step, (double)t, inner, (double)rel, (double)nm->tolLambda, (double)pen, (double)nm->tolPenetration);
+        PetscCall(PetscPrintf(comm, "WARNING %s: augmentations not converged at step %" PetscInt_FMT ", t = %g s (change %.3e, penetration %.3e m)\n", op->name, nm->step, (double)t, (double)rel, (double)pen));
+        break;
+      }
+    }
+    innerTotal += inner;
+    PetscCall(BoltContactSetUpdateActive(c, &nchanged, &cycling));
+    if (!nchanged) break;
+    refactor = PETSC_TRUE;
+    if (cycling || outer >= nm->maxOuter) {
+      if (cycling) nm->cycles++;
+      nm->failures++;
+      PetscCheck(nm->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: the active set did not settle at step %" PetscInt_FMT ", t = %g s: %s after %" PetscInt_FMT " outer iterations (%" PetscInt_FMT " points changed, %" PetscInt_FMT " active); raise -contact_max_outer or add -contact_continue to go on with a warning", op->name, nm->step, (double)t, cycling ? "it cycles between two sets" : "limit reached", outer, nchanged, c->nactive);
+      PetscCall(PetscPrintf(comm, "WARNING %s: active set %s at step %" PetscInt_FMT ", t = %g s; going on\n", op->name, cycling ? "cycles between two sets" : "not settled", nm->step, (double)t));
+      /* the last solve used the previous set: refactor so the next step starts consistent */
+      PetscCall(BoltNewmarkFactor(nm));
+      break;
+    }
+  }
+  *nouter = outer;
+  *ninner = innerTotal;
+  nm->outerTotal += outer;
+  nm->innerTotal += innerTotal;
+  nm->outerMax = PetscMax(nm->outerMax, outer);
+  nm->innerMax = PetscMax(nm->innerMax, innerTotal);
+  PetscFunctionReturn(0);
+}
+
+/* The static preloaded equilibrium: K q + K_c q = F_preload - B' lambda, every point active
+   at the start. Leaves q; v = a = 0. */
+PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
+{
+  PetscInt nout, nin;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltNewmarkSetK0(nm, PETSC_FALSE));
+  nm->step = 0;
+  PetscCall(VecCopy(nm->op->preload, nm->rhs));
+  if (nm->staticWithLoad) PetscCall(VecAXPY(nm->rhs, 1.0, nm->op->load));
+  PetscCall(BoltDualLoop(nm, nm->rhs, PETSC_TRUE, &nout, &nin));
+  nm->staticOuter = nout;
+  nm->staticInner = nin;
+  PetscCall(VecZeroEntries(nm->v));
+  PetscCall(VecZeroEntries(nm->acc));
+  PetscFunctionReturn(0);
+}
+
+static PetscReal BoltLoadAmplitude(BoltNewmark *nm, PetscReal t)
+{
+  if (nm->history == BOLT_LOAD_SINE) return PetscSinReal(2 * PETSC_PI * nm->frequency * t);
+  return t > 0 ? 1.0 : 0.0;
+}
+
+/* Energy of the current state: kinetic + strain (structure and contact penalty) - external work
+   potential of the current load. Constant for an undamped step with a fixed active set. */
+static PetscErrorCode BoltNewmarkEnergy(BoltNewmark *nm, PetscReal amp, PetscReal *E)
+{
+  BoltOperator *op = nm->op;
+  Mat           Kc;
+  PetscScalar   ek, es, ec, ef, ep;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(op->M, nm->v, nm->work));
+  PetscCall(VecDot(nm->v, nm->work, &ek));
+  PetscCall(MatMult(op->K, nm->q, nm->work));
+  PetscCall(VecDot(nm->q, nm->work, &es));
+  PetscCall(op->contactStiffness(op, &Kc));
+  PetscCall(MatMult(Kc, nm->q, nm->work));
+  PetscCall(VecDot(nm->q, nm->work, &ec));
+  PetscCall(VecDot(nm->q, op->load, &ef));
+  PetscCall(VecDot(nm->q, op->preload, &ep));
+  *E = 0.5 * PetscRealPart(ek + es + ec) - amp * PetscRealPart(ef) - PetscRealPart(ep);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
+{
+  BoltOperator  *op   = nm->op;
+  MPI_Comm       comm = PetscObjectComm((PetscObject)op->K);
+  PetscReal     *a    = nm->a;
+  Vec            qOld;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(VecDuplicate(nm->q, &qOld));
+  PetscCall(BoltNewmarkSetK0(nm, PETSC_TRUE));
+  nm->step = 0;
+  PetscCall(op->probe(op, nm->q, &nm->probeValue[0]));
+  PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0]));
+  for (PetscInt n = 1; n <= nm->nsteps; n++) {
+    PetscReal t = n * nm->dt, amp = BoltLoadAmplitude(nm, t);
+    PetscInt  nout, nin;
+
+    nm->step = n;
+    /* rhs = F(t) + M (a1 q + a2 v + a3 a) + C (a4 q + a5 v + a6 a) */
+    PetscCall(VecCopy(nm->q, qOld));
+    PetscCall(VecCopy(nm->q, nm->work));
+    PetscCall(VecAXPBYPCZ(nm->work, a[2], a[3], a[1], nm->v, nm->acc));
+    PetscCall(MatMult(op->M, nm->work, nm->rhs));
+    PetscCall(VecCopy(nm->q, nm->work));
+    PetscCall(VecAXPBYPCZ(nm->work, a[5], a[6], a[4], nm->v, nm->acc));
+    PetscCall(MatMultAdd(op->C, nm->work, nm->rhs, nm->rhs));
+    PetscCall(VecAXPY(nm->rhs, amp, op->load));
+    PetscCall(VecAXPY(nm->rhs, 1.0, op->preload));
+    PetscCall(BoltDualLoop(nm, nm->rhs, n == 1 ? PETSC_TRUE : PETSC_FALSE, &nout, &nin));
+    /* a_new = a1 (q - q_old) - a2 v - a3 a;  v_new = v + dt ((1 - gamma) a + gamma a_new) */
+    PetscCall(VecWAXPY(nm->work, -1.0, qOld, nm->q));
+    PetscCall(VecAXPBYPCZ(nm->work, -a[2], -a[3], a[1], nm->v, nm->acc));
+    PetscCall(VecAXPBYPCZ(nm->v, (1 - nm->gamma) * nm->dt, nm->gamma * nm->dt, 1.0, nm->acc, nm->work));
+    PetscCall(VecCopy(nm->work, nm->acc));
+    nm->probeTime[n] = t;
+    PetscCall(op->probe(op, nm->q, &nm->probeValue[n]));
+    PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n]));
+    if (nm->monitor) PetscCall(PetscPrintf(comm, "%s step %5" PetscInt_FMT " t %.6e outer %2" PetscInt_FMT " inner %3" PetscInt_FMT " active %" PetscInt_FMT "/%" PetscInt_FMT " energy %.10e probe %.6e\n", op->name, n, (double)t, nout, nin, op->contact->nactive, op->contact->ngpGlobal, (double)nm->energy[n], (double)nm->probeValue[n]));
+  }
+  PetscCall(VecDestroy(&qOld));
+  PetscCall(PetscTime(&t1));
+  nm->tOnline = t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltNewmarkView(BoltNewmark *nm, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s Newmark (beta %g, gamma %g), dt %g s, %" PetscInt_FMT " steps: %" PetscInt_FMT " factorisations, %" PetscInt_FMT " solves, outer %" PetscInt_FMT " (max %" PetscInt_FMT "), inner %" PetscInt_FMT " (max %" PetscInt_FMT "/step)\n", nm->op->name, (double)nm->beta, (double)nm->gamma, (double)nm->dt, nm->nsteps, nm->factorizations, nm->solves, nm->outerTotal, nm->outerMax, nm->innerTotal, nm->innerMax));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  online %.3f s: contact stiffness %.3f s, displacements %.3f s, contact forces %.3f s\n", (double)nm->tOnline, (double)nm->tContactStiffness, (double)nm->tDisplacements, (double)nm->tContactForces));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
+{
+  BoltNewmark *nm = *nmp;
+
+  PetscFunctionBeginUser;
+  if (!nm) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&nm->q));
+  PetscCall(VecDestroy(&nm->v));
+  PetscCall(VecDestroy(&nm->acc));
+  PetscCall(VecDestroy(&nm->rhs));
+  PetscCall(VecDestroy(&nm->Fc));
+  PetscCall(VecDestroy(&nm->work));
+  PetscCall(MatDestroy(&nm->K0));
+  PetscCall(MatDestroy(&nm->Keff));
+  PetscCall(KSPDestroy(&nm->ksp));
+  PetscCall(PetscFree3(nm->probeTime, nm->probeValue, nm->energy));
+  PetscCall(PetscFree(*nmp));
+  PetscFunctionReturn(0);
+}
