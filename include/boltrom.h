@@ -137,6 +137,10 @@ PetscErrorCode BoltContactSetSetUpState(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetResetState(BoltContactSet *);
 PetscErrorCode BoltContactSetScatter(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetGaps(BoltContactSet *);
+PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
+PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[]);
+PetscErrorCode BoltContactSetDot(BoltContactSet *, const PetscReal[], const PetscReal[], PetscReal *);
+PetscErrorCode BoltContactSetPenetration(BoltContactSet *, PetscReal[], PetscReal *);
 PetscErrorCode BoltContactSetAugment(BoltContactSet *, PetscReal *, PetscReal *);
 PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *, PetscInt *, PetscBool *);
 PetscErrorCode BoltContactSetForces(BoltContactSet *);
@@ -200,6 +204,8 @@ typedef struct {
   PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
   PetscBool       continueOnFailure, monitor;
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
+  PetscBool       calibratePreload;
+  PetscReal       preloadTarget, preloadScale;
   Mat             K0, Keff;
   KSP             ksp;
   PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */
@@ -212,6 +218,10 @@ typedef struct {
   PetscReal       tContactStiffness, tDisplacements, tContactForces, tOnline;
   PetscReal       staticOuter, staticInner;
   PetscReal       lastChange, lastPenetration; /* of the last augmentation */
+  PetscInt        inner;   /* 0: Uzawa augmentations (the paper), 1: conjugate gradients on the multipliers */
+  Vec             qp;      /* displacement of a search direction (CG) */
+  Vec             FcLambda; /* contact forces of the current multipliers (CG) */
+  PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
 } BoltNewmark;
 
 PetscErrorCode BoltNewmarkCreate(BoltOperator *, BoltNewmark **);

@@ -13,7 +13,7 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   c->mesh           = mesh;
   c->penaltyFactor  = 200.0;
   c->augment        = PETSC_TRUE;
-  c->warmStart      = PETSC_FALSE;
+  c->warmStart      = PETSC_TRUE;
   c->matchTolerance = 1e-6;
   *cs               = c;
   PetscFunctionReturn(0);
@@ -25,7 +25,7 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m]", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
-  PetscCall(PetscOptionsBool("-contact_warm_start", "Keep the multipliers across outer iterations and steps (false: reset to zero per outer iteration, as the paper)", NULL, c->warmStart, &c->warmStart, NULL));
+  PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, c->warmStart, &c->warmStart, NULL));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscOptionsEnd();
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
@@ -532,6 +532,13 @@ PetscErrorCode BoltContactSetScatter(BoltContactSet *c, Vec u)
 /* Gap vectors g = u_b - u_a at every Gauss point, from uc. */
 PetscErrorCode BoltContactSetGaps(BoltContactSet *c)
 {
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactSetGapsOf(c, c->gap));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactSetGapsOf(BoltContactSet *c, PetscReal gap[])
+{
   const PetscScalar *u;
 
   PetscFunctionBeginUser;
@@ -540,7 +547,7 @@ PetscErrorCode BoltContactSetGaps(BoltContactSet *c)
     const PetscInt *loc = &c->elemLocal[24 * e];
     for (PetscInt q = 0; q < 4; q++) {
       const PetscReal *N = &c->gpN[16 * e + 4 * q];
-      PetscReal       *g = &c->gap[12 * e + 3 * q];
+      PetscReal       *g = &gap[12 * e + 3 * q];
       for (PetscInt k = 0; k < 3; k++) {
         PetscReal v = 0;
         for (PetscInt a = 0; a < 4; a++) {
@@ -623,6 +630,13 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
    +N' lambda on side b (they enter the equations as K q + B' lambda = F). */
 PetscErrorCode BoltContactSetForces(BoltContactSet *c)
 {
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactSetForcesOf(c, c->lambda));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[])
+{
   PetscScalar *f;
 
   PetscFunctionBeginUser;
@@ -632,7 +646,7 @@ PetscErrorCode BoltContactSetForces(BoltContactSet *c)
     const PetscInt *loc = &c->elemLocal[24 * e];
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt         gp = 4 * e + q;
-      const PetscReal *N = &c->gpN[16 * e + 4 * q], *lam = &c->lambda[3 * gp], w = c->gpW[gp];
+      const PetscReal *N = &c->gpN[16 * e + 4 * q], *lam = &lambda[3 * gp], w = c->gpW[gp];
       if (lam[0] == 0 && lam[1] == 0 && lam[2] == 0) continue;
       for (PetscInt a = 0; a < 4; a++)
         for (PetscInt k = 0; k < 3; k++) {
@@ -701,5 +715,35 @@ PetscErrorCode BoltContactSetTractionStats(BoltContactSet *c, PetscReal *tnMin, 
   PetscCall(MPIU_Allreduce(&mn, tnMin, 1, MPIU_REAL, MPI_MIN, c->mesh->comm));
   PetscCall(MPIU_Allreduce(&mx, tnMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   PetscCall(MPIU_Allreduce(&tt, ttMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Area-weighted inner product over the active Gauss points: sum w x.y (global). */
+PetscErrorCode BoltContactSetDot(BoltContactSet *c, const PetscReal x[], const PetscReal y[], PetscReal *dot)
+{
+  PetscReal loc = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
+    if (c->active[gp]) loc += c->gpW[gp] * (x[3 * gp] * y[3 * gp] + x[3 * gp + 1] * y[3 * gp + 1] + x[3 * gp + 2] * y[3 * gp + 2]);
+  PetscCall(MPIU_Allreduce(&loc, dot, 1, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Largest penetration -g.n over the active points (global); zeroes g at inactive points. */
+PetscErrorCode BoltContactSetPenetration(BoltContactSet *c, PetscReal g[], PetscReal *pen)
+{
+  PetscReal loc = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    const PetscReal *n = &c->gpNormal[3 * gp];
+    if (!c->active[gp]) {
+      g[3 * gp] = g[3 * gp + 1] = g[3 * gp + 2] = 0;
+      continue;
+    }
+    loc = PetscMax(loc, -(g[3 * gp] * n[0] + g[3 * gp + 1] * n[1] + g[3 * gp + 2] * n[2]));
+  }
+  PetscCall(MPIU_Allreduce(&loc, pen, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   PetscFunctionReturn(0);
 }

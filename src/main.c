@@ -261,6 +261,7 @@ static PetscErrorCode BoltRun(void)
     PetscCall(BoltFOMCreate(asmb, contact, loads, &fomOp));
     PetscCall(BoltNewmarkCreate(fomOp, &fomNm));
     PetscCall(BoltNewmarkSetFromOptions(fomNm));
+    fomNm->preloadTarget = loads->hasPreload ? loads->preloadForce : 0;
     PetscCall(BoltNewmarkSetUp(fomNm));
     PetscCall(PetscLogStagePush(boltLog.stagePreload));
     PetscCall(BoltNewmarkPreload(fomNm));
@@ -361,6 +362,7 @@ static PetscErrorCode BoltRun(void)
     if (opt.fom) {
       PetscCall(BoltJSONBeginObject(&j, "preload"));
       PetscCall(BoltJSONReal(&j, "force", loads->preloadForce));
+      PetscCall(BoltJSONReal(&j, "layer_force_scale", fomNm->preloadScale));
       PetscCall(BoltJSONReal(&j, "outer", fomNm->staticOuter));
       PetscCall(BoltJSONReal(&j, "inner", fomNm->staticInner));
       PetscCall(BoltJSONReal(&j, "penetration_max", staticPenetration));
