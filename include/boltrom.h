@@ -217,6 +217,7 @@ typedef struct {
   PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
   PetscReal       tContactStiffness, tDisplacements, tContactForces, tOnline;
   PetscReal       staticOuter, staticInner;
+  PetscInt        staticFactorizations, staticSolves;
   PetscReal       lastChange, lastPenetration; /* of the last augmentation */
   PetscInt        inner;   /* 0: Uzawa augmentations (the paper), 1: conjugate gradients on the multipliers */
   Vec             qp;      /* displacement of a search direction (CG) */

@@ -682,7 +682,18 @@ PetscErrorCode BoltContactSetStiffness(BoltContactSet *c, Mat *Kc)
   PetscFunctionReturn(0);
 }
 
-/* Sum over each pair of the normal contact force, int lambda.n dA (negative in compression). */
+/* The contact traction at a Gauss point: the trial traction lambda + P g where active (equal to
+   lambda once the augmentations converge; P g alone for pure penalty), zero elsewhere. */
+static void BoltContactTraction(BoltContactSet *c, PetscInt e, PetscInt gp, PetscReal t[3])
+{
+  if (!c->active[gp]) {
+    t[0] = t[1] = t[2] = 0;
+    return;
+  }
+  BoltContactTrialTraction(&c->lambda[3 * gp], &c->gap[3 * gp], &c->gpNormal[3 * gp], c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], t);
+}
+
+/* Sum over each pair of the normal contact force, int t.n dA (negative in compression). */
 PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *c, PetscReal force[])
 {
   PetscFunctionBeginUser;
@@ -690,8 +701,10 @@ PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *c, PetscReal for
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt         gp = 4 * e + q;
-      const PetscReal *lam = &c->lambda[3 * gp], *n = &c->gpNormal[3 * gp];
-      force[c->elem[e].pair] += c->gpW[gp] * (lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2]);
+      PetscReal        t[3];
+      const PetscReal *n = &c->gpNormal[3 * gp];
+      BoltContactTraction(c, e, gp, t);
+      force[c->elem[e].pair] += c->gpW[gp] * (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
     }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, force, (PetscMPIInt)c->npairs, MPIU_REAL, MPI_SUM, c->mesh->comm));
   PetscFunctionReturn(0);
@@ -704,9 +717,11 @@ PetscErrorCode BoltContactSetTractionStats(BoltContactSet *c, PetscReal *tnMin, 
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-    const PetscReal *lam = &c->lambda[3 * gp], *n = &c->gpNormal[3 * gp];
-    PetscReal        ln = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2], t2 = 0;
+    const PetscReal *n = &c->gpNormal[3 * gp];
+    PetscReal        lam[3], ln, t2 = 0;
     if (!c->active[gp]) continue;
+    BoltContactTraction(c, gp / 4, gp, lam);
+    ln = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2];
     mn = PetscMin(mn, ln);
     mx = PetscMax(mx, ln);
     for (PetscInt k = 0; k < 3; k++) t2 += PetscSqr(lam[k] - ln * n[k]);

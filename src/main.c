@@ -365,6 +365,8 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONReal(&j, "layer_force_scale", fomNm->preloadScale));
       PetscCall(BoltJSONReal(&j, "outer", fomNm->staticOuter));
       PetscCall(BoltJSONReal(&j, "inner", fomNm->staticInner));
+      PetscCall(BoltJSONInt(&j, "factorizations", fomNm->staticFactorizations));
+      PetscCall(BoltJSONInt(&j, "solves", fomNm->staticSolves));
       PetscCall(BoltJSONReal(&j, "penetration_max", staticPenetration));
       PetscCall(BoltJSONReal(&j, "multiplier_change", staticChange));
       PetscCall(BoltJSONReal(&j, "traction_normal_min", tractionStats[0]));

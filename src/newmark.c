@@ -412,6 +412,11 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscCall(PetscTime(&t0));
   PetscCall(VecDuplicate(nm->q, &qOld));
   PetscCall(BoltNewmarkSetK0(nm, PETSC_TRUE));
+  /* counters from here on describe the transient; the static solve keeps its own */
+  nm->staticFactorizations = nm->factorizations;
+  nm->staticSolves         = nm->solves;
+  nm->factorizations = nm->solves = nm->outerTotal = nm->innerTotal = nm->outerMax = nm->innerMax = 0;
+  nm->tContactStiffness = nm->tDisplacements = nm->tContactForces = 0;
   nm->step = 0;
   PetscCall(op->probe(op, nm->q, &nm->probeValue[0]));
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0]));

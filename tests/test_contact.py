@@ -1,0 +1,94 @@
+"""Contact and the full-order transient: patch test, opening, energy, preload equilibrium,
+rank independence and non-convergence reporting."""
+import h5py
+import numpy as np
+import pytest
+
+from conftest import make_mesh, run_boltrom, run_summary
+
+FOM = ["-fom", "-static", "false", "-modal_nev", "0"]
+
+
+@pytest.fixture(scope="module")
+def blocks(meshdir):
+    return make_mesh("blocks", meshdir / "blocks.msh", 1)[0]
+
+
+@pytest.mark.parametrize("penalty", ["1e2", "1e4", "1e6"])
+def test_contact_patch_uniform_pressure(blocks, tmp_path, penalty):
+    """Two blocks pressed by p = 1 kN / 1 cm^2 (nu = 0, so the exact stress is uniform): once the
+    augmentations converge the traction is p at every Gauss point and the penetration vanishes."""
+    s = run_summary(["-mesh", blocks] + FOM + ["-load_group", "top", "-probe_group", "top", "-load_force", "1000",
+                     "-static_contact_load", "-ts_dt", "1e-4", "-ts_end", "1e-4", "-material_steel_nu", "0",
+                     "-contact_penalty_factor", penalty, "-contact_tol_lambda", "1e-12", "-output", "false"], tmp_path)
+    p = 1000.0 / 1e-4
+    pre = s["preload"]
+    assert pre["active_points"] == 16
+    assert abs(pre["traction_normal_min"] / -p - 1) < 1e-8
+    assert abs(pre["traction_normal_max"] / -p - 1) < 1e-8
+    assert pre["traction_tangential_max"] < 1e-8 * p
+    assert pre["penetration_max"] < 1e-12  # metres; the penalty alone would leave p / eps
+    assert abs(pre["normal_force_per_pair"]["upper_lower"] + 1000.0) < 1e-8 * 1000.0
+
+
+def test_contact_opening(blocks, tmp_path):
+    """The same blocks pulled apart: every point inactive, no contact force."""
+    s = run_summary(["-mesh", blocks] + FOM + ["-load_group", "top", "-probe_group", "top", "-load_force", "1000",
+                     "-load_direction", "0,0,1", "-ts_dt", "1e-5", "-ts_end", "5e-5", "-output", "false"], tmp_path)
+    assert s["fom"]["active_points"] == 0
+    assert s["fom"]["probe_final"] > 0  # the upper block moves up
+
+
+def test_energy_conserved_and_dissipated(joint_small, tmp_path):
+    """Undamped, beta = 1/4, pure penalty, active set fixed by the preload: the energy is
+    constant to 1e-10 over 10^4 steps; with damping it never increases."""
+    mesh, _ = joint_small
+    common = ["-mesh", mesh] + FOM + ["-contact_augment", "false", "-load_force", "0.1", "-ts_dt", "2e-5",
+                                      "-output_dir", tmp_path]
+    s = run_summary(common + ["-ts_end", "0.2", "-rayleigh_alpha", "0", "-rayleigh_beta", "0"], tmp_path)
+    assert s["fom"]["steps"] == 10000
+    assert s["fom"]["factorizations"] == 1 and s["fom"]["outer_max"] == 1  # the active set never changed
+    with h5py.File(tmp_path / "joint.h5") as f:
+        e = f["/fom/energy"][1:]
+    assert np.abs(e - e[0]).max() <= 1e-10 * np.abs(e).max()
+    run_summary(common + ["-ts_end", "0.01"], tmp_path, name="damped")
+    with h5py.File(tmp_path / "joint.h5") as f:
+        e = f["/fom/energy"][1:]
+    assert np.all(np.diff(e) <= 1e-12 * np.abs(e).max())
+    assert e[-1] < e[0]
+
+
+def test_preload_equilibrium(joint_small, tmp_path):
+    mesh, _ = joint_small
+    s = run_summary(["-mesh", mesh] + FOM + ["-ts_dt", "1e-4", "-ts_end", "1e-4", "-contact_tol_lambda", "1e-7", "-contact_max_inner", "1000",
+                     "-output", "false"], tmp_path)
+    forces = s["preload"]["normal_force_per_pair"]
+    assert len(forces) == 5
+    for pair, f in forces.items():
+        assert abs(-f / 20000.0 - 1) < 1e-6, (pair, f)
+
+
+def test_fom_history_same_on_1_and_2_ranks(joint_small, tmp_path):
+    mesh, _ = joint_small
+    hist = {}
+    for ranks in (1, 2):
+        d = tmp_path / f"np{ranks}"
+        run_summary(["-mesh", mesh] + FOM + ["-ts_dt", "1e-4", "-ts_end", "5e-3", "-contact_tol_lambda", "1e-9", "-contact_max_inner", "1000",
+                     "-output_dir", d], d, ranks=ranks)
+        with h5py.File(d / "joint.h5") as f:
+            hist[ranks] = f["/fom/probe"][...]
+    assert np.abs(hist[1] - hist[2]).max() <= 1e-8 * np.abs(hist[1]).max()
+
+
+def test_non_convergence_is_reported(joint_small, tmp_path):
+    mesh, _ = joint_small
+    args = ["-mesh", mesh] + FOM + ["-ts_dt", "1e-4", "-ts_end", "5e-4", "-contact_max_inner", "1",
+                                    "-output_dir", tmp_path / "out"]
+    proc = run_boltrom(args, check=False)
+    assert proc.returncode != 0
+    line = proc.stderr.strip().splitlines()
+    assert len(line) == 1 and "did not converge at step 0, t = 0" in line[0] and "multipliers change" in line[0]
+    assert "-contact_max_inner" in line[0] and "-contact_continue" in line[0]
+    assert not (tmp_path / "out").exists()
+    proc = run_boltrom(args + ["-contact_continue"], check=True)
+    assert "WARNING FOM: augmentations not converged at step" in proc.stdout
