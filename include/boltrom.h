@@ -213,6 +213,9 @@ typedef struct {
   Vec             q, v, acc, rhs, Fc, work;
   PetscInt        nsteps, step;
   PetscReal      *probeTime, *probeValue, *energy;
+  PetscInt        snapshotEvery, nsnap;
+  Vec            *snap;
+  PetscReal      *snapTime;
   /* counters and phase times (the paper's Table 2) */
   PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
   PetscReal       tContactStiffness, tDisplacements, tContactForces, tOnline;
@@ -252,12 +255,15 @@ typedef struct {
   char     field[16][BOLTROM_NAME_LEN];
   PetscInt fieldComponents[16];
   PetscBool fieldOnCells[16];
+  PetscInt  nsnap;              /* displacement snapshots, written as a temporal XDMF series */
+  PetscReal *snapTime;
 } BoltOutput;
 
 PetscErrorCode BoltOutputOpen(BoltMesh *, const char[], const char[], BoltOutput *);
 PetscErrorCode BoltOutputVertexField(BoltOutput *, BoltMesh *, Vec, const char[]);
 PetscErrorCode BoltOutputClose(BoltOutput *, BoltMesh *);
 PetscErrorCode BoltOutputSeries(BoltOutput *, const char[], const char[], PetscInt, const PetscReal[]);
+PetscErrorCode BoltOutputSnapshots(BoltOutput *, BoltMesh *, PetscInt, Vec[], const PetscReal[]);
 
 /* JSON summary: a flat writer for the keys the README documents. */
 typedef struct {

@@ -295,6 +295,7 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltOutputSeries(&h5, "/fom", "time", fomNm->nsteps + 1, fomNm->probeTime));
       PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fomNm->nsteps + 1, fomNm->probeValue));
       PetscCall(BoltOutputSeries(&h5, "/fom", "energy", fomNm->nsteps + 1, fomNm->energy));
+      if (fomNm->nsnap) PetscCall(BoltOutputSnapshots(&h5, mesh, fomNm->nsnap, fomNm->snap, fomNm->snapTime));
     }
     if (opt.verifyFields) {
       PetscCall(BoltOutputVertexField(&h5, mesh, x, "x"));

@@ -18,7 +18,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
   nm->history        = BOLT_LOAD_STEP;
   nm->frequency      = 50.0;
   nm->maxOuter       = 20;
-  nm->maxInner       = 100;
+  nm->maxInner       = 500;
   nm->tolLambda      = 1e-4;
   nm->tolPenetration = 1e-9;
   nm->inner          = 1;
@@ -52,11 +52,13 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsBool("-contact_continue", "On non-convergence, warn and go on instead of stopping", NULL, nm->continueOnFailure, &nm->continueOnFailure, NULL));
   PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
   PetscCall(PetscOptionsBool("-preload_calibrate", "Scale the preload layer forces so that the bolt clamps with -preload_force (the layer between them is elastic)", NULL, nm->calibratePreload, &nm->calibratePreload, NULL));
+  PetscCall(PetscOptionsInt("-snapshot_every", "Keep the displacement field every this many steps for ParaView (0: none)", NULL, nm->snapshotEvery, &nm->snapshotEvery, NULL));
   PetscCall(PetscOptionsBool("-monitor", "Print a line per time step", NULL, nm->monitor, &nm->monitor, NULL));
   PetscOptionsEnd();
   PetscCheck(nm->dt > 0, comm, PETSC_ERR_USER_INPUT, "-ts_dt must be > 0 (got %g)", (double)nm->dt);
   PetscCheck(nm->tEnd >= nm->dt, comm, PETSC_ERR_USER_INPUT, "-ts_end (%g) must be at least one time step -ts_dt (%g)", (double)nm->tEnd, (double)nm->dt);
   PetscCheck(nm->beta > 0 && nm->gamma >= 0.5, comm, PETSC_ERR_USER_INPUT, "Newmark needs beta > 0 and gamma >= 1/2 (got %g, %g)", (double)nm->beta, (double)nm->gamma);
+  PetscCheck(nm->snapshotEvery >= 0, comm, PETSC_ERR_USER_INPUT, "-snapshot_every must be >= 0");
   PetscCheck(nm->maxOuter >= 1 && nm->maxInner >= 1, comm, PETSC_ERR_USER_INPUT, "-contact_max_outer and -contact_max_inner must be >= 1");
   PetscFunctionReturn(0);
 }
@@ -86,6 +88,11 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscCall(VecDuplicate(nm->q, &nm->FcLambda));
   PetscCall(PetscMalloc3(12 * op->contact->nelem + 1, &nm->cgR, 12 * op->contact->nelem + 1, &nm->cgP, 12 * op->contact->nelem + 1, &nm->cgAp));
   PetscCall(PetscCalloc3(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy));
+  if (nm->snapshotEvery > 0) {
+    PetscInt n = nm->nsteps / nm->snapshotEvery + 1;
+    PetscCall(PetscCalloc1(n, &nm->snapTime));
+    PetscCall(VecDuplicateVecs(nm->q, n, &nm->snap));
+  }
   /* K0 gets the union of the structural and the contact pattern once, so that K_eff = K0 + K_c
      keeps one pattern and MUMPS repeats only the numeric factorisation */
   PetscCall(op->contactStiffness(op, &Kc));
@@ -419,6 +426,11 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   nm->tContactStiffness = nm->tDisplacements = nm->tContactForces = 0;
   nm->step = 0;
   PetscCall(op->probe(op, nm->q, &nm->probeValue[0]));
+  if (nm->snapshotEvery > 0) {
+    PetscCall(VecCopy(nm->q, nm->snap[0]));
+    nm->snapTime[0] = 0;
+    nm->nsnap       = 1;
+  }
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0]));
   for (PetscInt n = 1; n <= nm->nsteps; n++) {
     PetscReal t = n * nm->dt, amp = BoltLoadAmplitude(nm, t);
@@ -442,6 +454,10 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     PetscCall(VecAXPBYPCZ(nm->v, (1 - nm->gamma) * nm->dt, nm->gamma * nm->dt, 1.0, nm->acc, nm->work));
     PetscCall(VecCopy(nm->work, nm->acc));
     nm->probeTime[n] = t;
+    if (nm->snapshotEvery > 0 && n % nm->snapshotEvery == 0) {
+      PetscCall(VecCopy(nm->q, nm->snap[nm->nsnap]));
+      nm->snapTime[nm->nsnap++] = t;
+    }
     PetscCall(op->probe(op, nm->q, &nm->probeValue[n]));
     PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n]));
     if (nm->monitor) PetscCall(PetscPrintf(comm, "%s step %5" PetscInt_FMT " t %.6e outer %2" PetscInt_FMT " inner %3" PetscInt_FMT " active %" PetscInt_FMT "/%" PetscInt_FMT " energy %.10e probe %.6e\n", op->name, n, (double)t, nout, nin, op->contact->nactive, op->contact->ngpGlobal, (double)nm->energy[n], (double)nm->probeValue[n]));
@@ -479,6 +495,8 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   PetscCall(MatDestroy(&nm->Keff));
   PetscCall(KSPDestroy(&nm->ksp));
   PetscCall(PetscFree3(nm->probeTime, nm->probeValue, nm->energy));
+  if (nm->snap) PetscCall(VecDestroyVecs(nm->nsteps / nm->snapshotEvery + 1, &nm->snap));
+  PetscCall(PetscFree(nm->snapTime));
   PetscCall(PetscFree(*nmp));
   PetscFunctionReturn(0);
 }

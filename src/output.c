@@ -221,6 +221,33 @@ PetscErrorCode BoltOutputSeries(BoltOutput *out, const char group[], const char 
   PetscFunctionReturn(0);
 }
 
+/* Displacement snapshots: vertex fields snapshot_<i>, and a temporal XDMF series at close. */
+PetscErrorCode BoltOutputSnapshots(BoltOutput *out, BoltMesh *m, PetscInt n, Vec snap[], const PetscReal time[])
+{
+  PetscInt nf = out->nfields;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; i++) {
+    char name[32];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "snapshot_%06" PetscInt_FMT, i));
+    PetscCall(PetscObjectSetName((PetscObject)snap[i], name));
+    PetscCall(BoltOutputVertexField(out, m, snap[i], name));
+    out->nfields = nf; /* snapshots go to the series file, not to the main grid */
+  }
+  PetscCall(PetscMalloc1(n + 1, &out->snapTime));
+  PetscCall(PetscArraycpy(out->snapTime, time, n));
+  out->nsnap = n;
+  PetscFunctionReturn(0);
+}
+
+static void BoltWriteXdmfMesh(FILE *fp, BoltOutput *out, BoltMesh *m)
+{
+  fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n", m->ncellsGlobal);
+  fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s.h5:/topology/cells</DataItem>\n   </Topology>\n", m->ncellsGlobal, (int)sizeof(PetscInt), out->name);
+  fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/geometry/vertices</DataItem>\n   </Geometry>\n", m->nverticesGlobal, out->name);
+  fprintf(fp, "   <Attribute Name=\"part\" AttributeType=\"Scalar\" Center=\"Cell\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/cell_fields/part</DataItem>\n   </Attribute>\n", m->ncellsGlobal, out->name);
+}
+
 PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
 {
   PetscMPIInt rank;
@@ -253,7 +280,24 @@ PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
     fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
     PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", xtmp);
     PetscCheck(rename(xtmp, xfinal) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", xtmp, xfinal);
+    if (out->nsnap) {
+      PetscCall(PetscSNPrintf(xfinal, sizeof(xfinal), "%s/%s-series.xmf", out->dir, out->name));
+      PetscCall(PetscSNPrintf(xtmp, sizeof(xtmp), "%s/.%s-series.xmf.tmp", out->dir, out->name));
+      fp = fopen(xtmp, "w");
+      PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: check -output_dir", xtmp);
+      fprintf(fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
+      fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", out->name);
+      for (PetscInt i = 0; i < out->nsnap; i++) {
+        fprintf(fp, "  <Grid Name=\"step\" GridType=\"Uniform\">\n   <Time Value=\"%.10g\"/>\n", (double)out->snapTime[i]);
+        BoltWriteXdmfMesh(fp, out, m);
+        fprintf(fp, "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/snapshot_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n  </Grid>\n", m->nverticesGlobal, out->name, i);
+      }
+      fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+      PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", xtmp);
+      PetscCheck(rename(xtmp, xfinal) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", xtmp, xfinal);
+    }
   }
+  PetscCall(PetscFree(out->snapTime));
   PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

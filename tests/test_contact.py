@@ -92,3 +92,19 @@ def test_non_convergence_is_reported(joint_small, tmp_path):
     assert not (tmp_path / "out").exists()
     proc = run_boltrom(args + ["-contact_continue"], check=True)
     assert "WARNING FOM: augmentations not converged at step" in proc.stdout
+
+
+def test_snapshot_series_for_paraview(joint_small, tmp_path):
+    import xml.etree.ElementTree as ET
+    mesh, _ = joint_small
+    run_summary(["-mesh", mesh] + FOM + ["-ts_dt", "1e-4", "-ts_end", "1e-3", "-snapshot_every", "5",
+                 "-output_dir", tmp_path], tmp_path)
+    root = ET.parse(tmp_path / "joint-series.xmf").getroot()
+    times = [float(t.get("Value")) for t in root.iter("Time")]
+    assert np.allclose(times, [0, 5e-4, 1e-3])
+    with h5py.File(tmp_path / "joint.h5") as f:
+        for item in root.iter("DataItem"):
+            fname, path = item.text.strip().split(":")
+            assert f[path].shape == tuple(int(v) for v in item.get("Dimensions").split())
+        last = f["/vertex_fields/snapshot_000002"][...]
+        assert np.allclose(last, f["/vertex_fields/fom_final_displacement"][...])
