@@ -18,6 +18,7 @@ typedef struct {
   PetscLogEvent meshRead, meshDistribute, assembly, contactSetUp, contactAssembly, loads;
   PetscLogEvent factorization, staticSolve, modalSolve, output;
   PetscLogEvent contactStiffness, displacements, contactForces; /* the paper's Table 2 phases */
+  PetscLogEvent basis, projection;
   PetscLogStage stageSetUp, stageStatic, stageModal, stageOutput, stagePreload, stageTransient;
 } BoltLog;
 extern BoltLog boltLog;
@@ -182,6 +183,8 @@ PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **);
 typedef struct BoltOperator_s BoltOperator;
 struct BoltOperator_s {
   const char      *name;     /* "FOM" or "ROM" */
+  MPI_Comm         comm;     /* for messages and errors (the ROM's matrices live on every rank) */
+  MatSolverType    solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
   char             prefix[16]; /* options prefix of its solver: fom_ or rom_ */
   Mat              M, C, K;
   Vec              load, preload; /* external load pattern and preload, in its coordinates */
@@ -239,6 +242,43 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 /* fom.c: the full-order operator */
 PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltOperator **);
 PetscErrorCode BoltFOMDestroy(BoltOperator **);
+
+/* ------------------------------------------------------------------ reduction.c, rom.c */
+/* The reduced model: projected matrices (replicated on every rank, small and dense), the rows
+   of the basis at this rank's contact DOFs and at the probe, and the reduced contact stiffness
+   kept up to date element by element. */
+typedef struct {
+  MPI_Comm        comm;
+  PetscInt        n;                 /* reduced dimension */
+  Mat             Mr, Cr, Kr, Kcr;   /* MATSEQDENSE n x n on every rank */
+  Vec             loadr, preloadr;   /* MATSEQ n */
+  PetscScalar    *Vc;                /* nlocal x n, column-major: rows of V at contact->localGlobal */
+  PetscReal      *Vprobe;            /* n: the probe row of V */
+  PetscReal      *Ke;                /* 576 per local contact element: the matrix inside Kcr */
+  PetscScalar    *work, *work2, *dK; /* scratch */
+  BoltContactSet *contact;
+  /* offline figures */
+  PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];
+  PetscReal       s0, tOffline, tInputs, tBasis, tProject, tFactor, tSolve, tOrth, tInterface;
+  PetscBool       fromFile;
+  char            fingerprint[256];
+} BoltROM;
+
+typedef struct {
+  MPI_Comm   comm;
+  PetscInt   order, blockSize, nCCM, nJIM;
+  PetscReal  s0, deflationTol;
+  char       file[PETSC_MAX_PATH_LEN];
+  PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
+  PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
+} BoltReductionOptions;
+
+PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);
+PetscErrorCode BoltROMBuild(BoltReductionOptions *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltROM **);
+PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
+PetscErrorCode BoltROMOperatorDestroy(BoltOperator **);
+PetscErrorCode BoltROMDestroy(BoltROM **);
+PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *);
 
 /* ------------------------------------------------------------------ analysis.c */
 PetscErrorCode BoltStaticSolve(Mat, Vec, Vec, const char[]);

@@ -49,7 +49,9 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   PetscCall(PetscNew(&op));
   PetscCall(PetscNew(&ctx));
   ctx->loads = loads;
-  op->name   = "FOM";
+  op->name       = "FOM";
+  op->comm       = asmb->mesh->comm;
+  op->solverType = MATSOLVERMUMPS;
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
   op->M = asmb->M;
   op->K = asmb->K;

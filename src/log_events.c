@@ -25,6 +25,8 @@ PetscErrorCode BoltLogRegister(void)
   PetscCall(PetscLogEventRegister("ContactStiffness", classid, &boltLog.contactStiffness));
   PetscCall(PetscLogEventRegister("Displacements", classid, &boltLog.displacements));
   PetscCall(PetscLogEventRegister("ContactForces", classid, &boltLog.contactForces));
+  PetscCall(PetscLogEventRegister("RomBasis", classid, &boltLog.basis));
+  PetscCall(PetscLogEventRegister("RomProjection", classid, &boltLog.projection));
   PetscCall(PetscLogStageRegister("Model set-up", &boltLog.stageSetUp));
   PetscCall(PetscLogStageRegister("Preload", &boltLog.stagePreload));
   PetscCall(PetscLogStageRegister("Transient", &boltLog.stageTransient));

@@ -8,7 +8,7 @@ typedef struct {
   char      outputDir[PETSC_MAX_PATH_LEN];
   char      outputName[BOLTROM_NAME_LEN];
   char      summary[PETSC_MAX_PATH_LEN];
-  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom;
+  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom, rom;
   PetscInt  verifyField; /* 0 smooth, 1 linear */
   PetscInt  nev;
 } BoltRunOptions;
@@ -25,6 +25,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   o->writeOutput  = PETSC_TRUE;
   o->nev          = 3;
   o->fom          = PETSC_FALSE;
+  o->rom          = PETSC_FALSE;
   o->verifyField  = 0;
   PetscOptionsBegin(comm, NULL, "Run", "boltrom");
   PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
@@ -33,6 +34,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   PetscCall(PetscOptionsString("-summary", "Write a JSON summary to this file (keys in the README)", NULL, o->summary, o->summary, sizeof(o->summary), NULL));
   PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
   PetscCall(PetscOptionsBool("-fom", "Run the full-order model with contact: static preload, then the Newmark transient", NULL, o->fom, &o->fom, NULL));
+  PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));
   PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
   PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));
   {
@@ -119,7 +121,10 @@ static PetscErrorCode BoltRun(void)
   BoltLoadSet    *loads;
   Mat             Ktied = NULL;
   BoltOperator   *fomOp = NULL;
-  BoltNewmark    *fomNm = NULL;
+  BoltNewmark    *fomNm = NULL, *romNm = NULL;
+  BoltOperator   *romOp = NULL;
+  BoltROM        *rom   = NULL;
+  PetscReal       errL2 = 0, errMean = 0;
   PetscReal       preloadForce[BOLTROM_MAX_PAIRS], tractionStats[3] = {0, 0, 0}, staticPenetration = 0, staticChange = 0;
   PetscInt        preloadActive = 0;
   Vec             u = NULL, x = NULL, Kx = NULL, Mx = NULL;
@@ -280,6 +285,29 @@ static PetscErrorCode BoltRun(void)
     PetscCall(PetscLogStagePop());
     PetscCall(BoltNewmarkView(fomNm, out));
   }
+  if (opt.rom) {
+    BoltReductionOptions ropt;
+    if (!opt.fom) PetscCall(BoltContactSetSetUpState(contact, u));
+    else PetscCall(BoltContactSetResetState(contact));
+    PetscCall(BoltReductionOptionsSetFromOptions(comm, &ropt));
+    PetscCall(BoltROMBuild(&ropt, asmb, contact, loads, &rom));
+    PetscCall(BoltROMOperatorCreate(rom, &romOp));
+    PetscCall(BoltNewmarkCreate(romOp, &romNm));
+    PetscCall(BoltNewmarkSetFromOptions(romNm));
+    romNm->preloadTarget = loads->hasPreload ? loads->preloadForce : 0;
+    PetscCall(BoltNewmarkSetUp(romNm));
+    PetscCall(PetscLogStagePush(boltLog.stagePreload));
+    PetscCall(BoltNewmarkPreload(romNm));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscLogStagePush(boltLog.stageTransient));
+    PetscCall(BoltNewmarkRun(romNm));
+    PetscCall(PetscLogStagePop());
+    PetscCall(BoltNewmarkView(romNm, out));
+    if (opt.fom) {
+      PetscCall(BoltHistoryErrors(fomNm->nsteps + 1, fomNm->probeValue, romNm->probeValue, &errL2, &errMean));
+      PetscCall(PetscPrintf(comm, "ROM against FOM at '%s': e_L2 %.4e, mean relative error %.4e; speedup (online) %.1f\n", loads->probeGroup, (double)errL2, (double)errMean, (double)(fomNm->tOnline / romNm->tOnline)));
+    }
+  }
   /* every option must have been used before anything is written */
   PetscCall(BoltCheckUnusedOptions(comm));
 
@@ -296,6 +324,11 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fomNm->nsteps + 1, fomNm->probeValue));
       PetscCall(BoltOutputSeries(&h5, "/fom", "energy", fomNm->nsteps + 1, fomNm->energy));
       if (fomNm->nsnap) PetscCall(BoltOutputSnapshots(&h5, mesh, fomNm->nsnap, fomNm->snap, fomNm->snapTime));
+    }
+    if (opt.rom) {
+      PetscCall(BoltOutputSeries(&h5, "/rom", "time", romNm->nsteps + 1, romNm->probeTime));
+      PetscCall(BoltOutputSeries(&h5, "/rom", "probe", romNm->nsteps + 1, romNm->probeValue));
+      PetscCall(BoltOutputSeries(&h5, "/rom", "energy", romNm->nsteps + 1, romNm->energy));
     }
     if (opt.verifyFields) {
       PetscCall(BoltOutputVertexField(&h5, mesh, x, "x"));
@@ -406,6 +439,45 @@ static PetscErrorCode BoltRun(void)
       }
       PetscCall(BoltJSONEndObject(&j));
     }
+    if (opt.rom) {
+      PetscCall(BoltJSONBeginObject(&j, "rom"));
+      PetscCall(BoltJSONInt(&j, "dim", rom->n));
+      PetscCall(BoltJSONInt(&j, "order", rom->order));
+      PetscCall(BoltJSONReal(&j, "s0", rom->s0));
+      PetscCall(BoltJSONInt(&j, "inputs", rom->ninputs));
+      PetscCall(BoltJSONInt(&j, "n_ccm", rom->nCCM));
+      PetscCall(BoltJSONInt(&j, "n_jim", rom->nJIM));
+      PetscCall(BoltJSONString(&j, "source", rom->fromFile ? "file" : "built"));
+      PetscCall(BoltJSONReal(&j, "offline_s", rom->tOffline));
+      PetscCall(BoltJSONReal(&j, "offline_inputs_s", rom->tInputs));
+      PetscCall(BoltJSONReal(&j, "offline_basis_s", rom->tBasis));
+      PetscCall(BoltJSONReal(&j, "offline_factor_s", rom->tFactor));
+      PetscCall(BoltJSONReal(&j, "offline_solves_s", rom->tSolve));
+      PetscCall(BoltJSONReal(&j, "offline_orth_s", rom->tOrth));
+      PetscCall(BoltJSONReal(&j, "offline_interface_s", rom->tInterface));
+      PetscCall(BoltJSONReal(&j, "offline_projection_s", rom->tProject));
+      PetscCall(BoltJSONInt(&j, "steps", romNm->nsteps));
+      PetscCall(BoltJSONReal(&j, "online_s", romNm->tOnline));
+      PetscCall(BoltJSONReal(&j, "contact_stiffness_s", romNm->tContactStiffness));
+      PetscCall(BoltJSONReal(&j, "displacements_s", romNm->tDisplacements));
+      PetscCall(BoltJSONReal(&j, "contact_forces_s", romNm->tContactForces));
+      PetscCall(BoltJSONInt(&j, "factorizations", romNm->factorizations));
+      PetscCall(BoltJSONInt(&j, "solves", romNm->solves));
+      PetscCall(BoltJSONInt(&j, "outer_total", romNm->outerTotal));
+      PetscCall(BoltJSONInt(&j, "inner_total", romNm->innerTotal));
+      PetscCall(BoltJSONInt(&j, "failures", romNm->failures));
+      PetscCall(BoltJSONReal(&j, "probe_final", romNm->probeValue[romNm->nsteps]));
+      PetscCall(BoltJSONEndObject(&j));
+      if (opt.fom) {
+        PetscCall(BoltJSONReal(&j, "speedup", fomNm->tOnline / romNm->tOnline));
+        PetscCall(BoltJSONBeginObject(&j, "errors"));
+        PetscCall(BoltJSONBeginObject(&j, loads->probeGroup));
+        PetscCall(BoltJSONReal(&j, "e_L2", errL2));
+        PetscCall(BoltJSONReal(&j, "e_mean", errMean));
+        PetscCall(BoltJSONEndObject(&j));
+        PetscCall(BoltJSONEndObject(&j));
+      }
+    }
     PetscCall(BoltJSONReal(&j, "setup_s", tSetUp));
     PetscCall(BoltJSONClose(&j));
   }
@@ -417,6 +489,9 @@ static PetscErrorCode BoltRun(void)
   PetscCall(VecDestroy(&Mx));
   PetscCall(MatDestroy(&Ktied));
   PetscCall(BoltNewmarkDestroy(&fomNm));
+  PetscCall(BoltNewmarkDestroy(&romNm));
+  PetscCall(BoltROMOperatorDestroy(&romOp));
+  PetscCall(BoltROMDestroy(&rom));
   PetscCall(BoltFOMDestroy(&fomOp));
   PetscCall(BoltLoadSetDestroy(&loads));
   PetscCall(BoltContactSetDestroy(&contact));

@@ -30,7 +30,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
 
 PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
 {
-  MPI_Comm    comm = PetscObjectComm((PetscObject)nm->op->K);
+  MPI_Comm    comm = nm->op->comm;
   const char *hist[] = {"step", "sine", "BoltLoadHistory", "BOLT_LOAD_", NULL};
 
   PetscFunctionBeginUser;
@@ -101,12 +101,12 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscCall(MatAXPY(nm->K0, 1.0, Z, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatDestroy(&Z));
   PetscCall(MatDuplicate(nm->K0, MAT_COPY_VALUES, &nm->Keff));
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)op->K), &nm->ksp));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)op->K), &nm->ksp)); /* the matrices' communicator */
   PetscCall(KSPSetOptionsPrefix(nm->ksp, op->prefix));
   PetscCall(KSPSetType(nm->ksp, KSPPREONLY));
   PetscCall(KSPGetPC(nm->ksp, &pc));
   PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(PCFactorSetMatSolverType(pc, op->solverType));
   PetscCall(KSPSetFromOptions(nm->ksp));
   PetscFunctionReturn(0);
 }
@@ -151,7 +151,7 @@ static PetscErrorCode BoltNewmarkFactor(BoltNewmark *nm)
     PCFailedReason reason;
     PetscCall(KSPGetPC(nm->ksp, &pc));
     PetscCall(PCGetFailedReason(pc, &reason));
-    PetscCheck(reason == PC_NOERROR, PetscObjectComm((PetscObject)nm->Keff), PETSC_ERR_NOT_CONVERGED, "%s: factorisation of the effective stiffness failed (%s) at step %" PetscInt_FMT ", t = %g s: the system is singular (a part held by contact alone lost all contact?)", op->name, PCFailedReasons[reason], nm->step, (double)(nm->step * nm->dt));
+    PetscCheck(reason == PC_NOERROR, nm->op->comm, PETSC_ERR_NOT_CONVERGED, "%s: factorisation of the effective stiffness failed (%s) at step %" PetscInt_FMT ", t = %g s: the system is singular (a part held by contact alone lost all contact?)", op->name, PCFailedReasons[reason], nm->step, (double)(nm->step * nm->dt));
   }
   PetscCall(PetscTime(&t0));
   nm->tDisplacements += t0 - t1;
@@ -202,7 +202,7 @@ static PetscErrorCode BoltGapsOf(BoltNewmark *nm, Vec q, PetscReal gap[])
 
 static PetscErrorCode BoltInnerFailure(BoltNewmark *nm, PetscInt inner, PetscReal rel, PetscReal pen)
 {
-  MPI_Comm comm = PetscObjectComm((PetscObject)nm->op->K);
+  MPI_Comm comm = nm->op->comm;
 
   PetscFunctionBeginUser;
   nm->failures++;
@@ -226,7 +226,7 @@ static PetscErrorCode BoltInnerUzawa(BoltNewmark *nm, Vec rhs0, PetscInt *ninner
     PetscCall(BoltContactSetAugment(c, &rel, &pen));
     nm->lastChange      = rel;
     nm->lastPenetration = pen;
-    PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(pen), PetscObjectComm((PetscObject)nm->op->K), PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", nm->op->name, nm->step, (double)(nm->step * nm->dt));
+    PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(pen), nm->op->comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", nm->op->name, nm->step, (double)(nm->step * nm->dt));
     if (!c->augment) break;
     if (rel <= nm->tolLambda && pen <= nm->tolPenetration) break;
     if (inner >= nm->maxInner) {
@@ -271,7 +271,7 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
     PetscCall(BoltGapsOf(nm, nm->qp, Ap));
     PetscCall(BoltContactSetPenetration(c, Ap, &pnorm)); /* zeroes inactive points */
     PetscCall(BoltContactSetDot(c, p, Ap, &pAp));
-    PetscCheck(!PetscIsInfOrNanReal(pAp) && !PetscIsInfOrNanReal(rr), PetscObjectComm((PetscObject)nm->op->K), PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", nm->op->name, nm->step, (double)(nm->step * nm->dt));
+    PetscCheck(!PetscIsInfOrNanReal(pAp) && !PetscIsInfOrNanReal(rr), nm->op->comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", nm->op->name, nm->step, (double)(nm->step * nm->dt));
     if (pAp <= 0) break; /* the remaining gaps are invisible to the multipliers */
     alpha = rr / pAp;
     for (PetscInt k = 0; k < ng; k++) {
@@ -308,7 +308,7 @@ static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor
 {
   BoltOperator   *op   = nm->op;
   BoltContactSet *c    = op->contact;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)op->K);
+  MPI_Comm        comm = op->comm;
   PetscReal       t    = nm->step * nm->dt;
   PetscInt        outer, inner = 0, innerTotal = 0;
 
@@ -367,7 +367,7 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
     PetscReal       force[BOLTROM_MAX_PAIRS], fmax = 0, scale;
     PetscCall(BoltContactSetNormalForcePerPair(c, force));
     for (PetscInt p = 0; p < c->npairs; p++) fmax = PetscMax(fmax, PetscAbsReal(force[p]));
-    PetscCheck(fmax > 0, PetscObjectComm((PetscObject)nm->q), PETSC_ERR_USER_INPUT, "The preload transmits no contact force: check the preload groups and the bolt axis (-preload_axis)");
+    PetscCheck(fmax > 0, nm->op->comm, PETSC_ERR_USER_INPUT, "The preload transmits no contact force: check the preload groups and the bolt axis (-preload_axis)");
     scale = nm->preloadTarget / fmax;
     nm->preloadScale = scale;
     PetscCall(VecScale(nm->q, scale));
@@ -410,7 +410,7 @@ static PetscErrorCode BoltNewmarkEnergy(BoltNewmark *nm, PetscReal amp, PetscRea
 PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
 {
   BoltOperator  *op   = nm->op;
-  MPI_Comm       comm = PetscObjectComm((PetscObject)op->K);
+  MPI_Comm       comm = op->comm;
   PetscReal     *a    = nm->a;
   Vec            qOld;
   PetscLogDouble t0, t1;

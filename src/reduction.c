@@ -1,0 +1,245 @@
+/* Offline reduction: the input matrix B (contact node pairs, load, preload), the second-order
+   Krylov basis of boltrom_krylov.h, and the projection onto it (BoltROM). */
+#include "boltrom.h"
+#include "boltrom_krylov.h"
+
+PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOptions *o)
+{
+  PetscFunctionBeginUser;
+  o->comm        = comm;
+  o->file[0]     = '\0';
+  o->rebuild     = PETSC_TRUE;
+  o->extraInputs = PETSC_FALSE;
+  o->nCCM = o->nJIM = 0;
+  PetscOptionsBegin(comm, NULL, "Reduction", "boltrom");
+  PetscCall(PetscOptionsString("-rom_file", "ROM file (HDF5) to reuse if it matches, or to write", NULL, o->file, o->file, sizeof(o->file), NULL));
+  PetscCall(PetscOptionsBool("-rom_rebuild", "Rebuild a ROM file that does not match the scene (false: refuse)", NULL, o->rebuild, &o->rebuild, NULL));
+  PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+/* Columns e_a - e_b for every matched node pair and direction, then the load and the preload. */
+static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, BV *B, PetscInt *ncols)
+{
+  MPI_Comm    comm = c->mesh->comm;
+  PetscInt    nloc = 0, npairs, rstart, rend, col = 0, *pairs, *all;
+  PetscMPIInt size, *counts, *displs, mycount;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  /* node pairs of the local elements: (a dof, b dof) of the x component */
+  PetscCall(PetscMalloc1(8 * c->nelem + 2, &pairs));
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt a = 0; a < 4; a++) {
+      pairs[2 * nloc]     = c->elem[e].dofs[3 * a];
+      pairs[2 * nloc + 1] = c->elem[e].dofs[12 + 3 * a];
+      nloc++;
+    }
+  PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
+  mycount = (PetscMPIInt)(2 * nloc);
+  PetscCallMPI(MPI_Allgather(&mycount, 1, MPI_INT, counts, 1, MPI_INT, comm));
+  displs[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+  PetscCall(PetscMalloc1(displs[size] + 2, &all));
+  PetscCallMPI(MPI_Allgatherv(pairs, mycount, MPIU_INT, all, counts, displs, MPIU_INT, comm));
+  npairs = displs[size] / 2;
+  /* unique by the pair (a, b): sort on a key (a and b are both global DOFs, or -1 if clamped) */
+  {
+    PetscInt *key, *perm, n = 0;
+    PetscCall(PetscMalloc2(npairs + 1, &key, npairs + 1, &perm));
+    for (PetscInt i = 0; i < npairs; i++) {
+      key[i]  = all[2 * i] >= 0 ? all[2 * i] : -1 - all[2 * i + 1];
+      perm[i] = i;
+    }
+    PetscCall(PetscSortIntWithPermutation(npairs, key, perm));
+    for (PetscInt i = 0; i < npairs; i++) {
+      PetscInt k = perm[i];
+      if (i > 0 && key[perm[i - 1]] == key[k]) continue;
+      pairs[2 * n]     = all[2 * k];
+      pairs[2 * n + 1] = all[2 * k + 1];
+      n++;
+    }
+    npairs = n;
+    PetscCall(PetscFree2(key, perm));
+  }
+  PetscCall(PetscFree(all));
+  PetscCall(PetscFree2(counts, displs));
+  *ncols = 3 * npairs + 2;
+  PetscCall(BVCreate(comm, B));
+  PetscCall(BVSetSizesFromVec(*B, layout, *ncols));
+  PetscCall(BVSetFromOptions(*B));
+  PetscCall(VecGetOwnershipRange(layout, &rstart, &rend));
+  for (PetscInt i = 0; i < npairs; i++)
+    for (PetscInt d = 0; d < 3; d++) {
+      Vec          v;
+      PetscScalar *x;
+      PetscInt     ia = pairs[2 * i] >= 0 ? pairs[2 * i] + d : -1, ib = pairs[2 * i + 1] >= 0 ? pairs[2 * i + 1] + d : -1;
+      PetscCall(BVGetColumn(*B, col, &v));
+      PetscCall(VecGetArray(v, &x));
+      for (PetscInt k = 0; k < rend - rstart; k++) x[k] = 0;
+      if (ia >= rstart && ia < rend) x[ia - rstart] = 1.0;
+      if (ib >= rstart && ib < rend) x[ib - rstart] = -1.0;
+      PetscCall(VecRestoreArray(v, &x));
+      PetscCall(BVRestoreColumn(*B, col, &v));
+      col++;
+    }
+  PetscCall(BVInsertVec(*B, col++, loads->load));
+  PetscCall(BVInsertVec(*B, col++, loads->preload));
+  PetscCall(PetscFree(pairs));
+  PetscFunctionReturn(0);
+}
+
+/* Rows of V at this rank's contact DOFs (through the contact scatter) and at the probe. */
+static PetscErrorCode BoltROMExtractRows(BoltROM *rom, BV V, BoltLoadSet *loads)
+{
+  BoltContactSet *c = rom->contact;
+  Vec             e;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(c->nlocal * rom->n + 1, &rom->Vc));
+  for (PetscInt j = 0; j < rom->n; j++) {
+    Vec                v;
+    const PetscScalar *u;
+    PetscCall(BVGetColumn(V, j, &v));
+    PetscCall(BoltContactSetScatter(c, v));
+    PetscCall(BVRestoreColumn(V, j, &v));
+    PetscCall(VecGetArrayRead(c->uc, &u));
+    for (PetscInt i = 0; i < c->nlocal; i++) rom->Vc[i + c->nlocal * j] = u[i];
+    PetscCall(VecRestoreArrayRead(c->uc, &u));
+  }
+  PetscCall(VecDuplicate(loads->load, &e));
+  PetscCall(VecZeroEntries(e));
+  if (loads->probeDof >= 0) PetscCall(VecSetValue(e, loads->probeDof, 1.0, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(e));
+  PetscCall(VecAssemblyEnd(e));
+  PetscCall(PetscMalloc1(rom->n + 1, &rom->Vprobe));
+  {
+    PetscScalar *d;
+    PetscCall(PetscMalloc1(rom->n + 1, &d));
+    PetscCall(BVDotVec(V, e, d));
+    for (PetscInt j = 0; j < rom->n; j++) rom->Vprobe[j] = PetscRealPart(d[j]);
+    PetscCall(PetscFree(d));
+  }
+  PetscCall(VecDestroy(&e));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltProject(BV V, Mat A, Mat *Ar)
+{
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCall(BVGetSizes(V, NULL, NULL, &n));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, Ar));
+  PetscCall(BVMatProject(V, A, V, *Ar));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltProjectVec(BV V, Vec f, Vec *fr)
+{
+  PetscInt     n;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(BVGetSizes(V, NULL, NULL, &n));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, fr));
+  PetscCall(VecGetArray(*fr, &a));
+  PetscCall(BVDotVec(V, f, a));
+  PetscCall(VecRestoreArray(*fr, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM **romp)
+{
+  BoltROM       *rom;
+  BoltKrylov    *kry;
+  BV             B, V;
+  Mat            C;
+  PetscLogDouble t0, t1, t2, t3;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscNew(&rom));
+  rom->comm    = o->comm;
+  rom->contact = contact;
+  PetscCall(BoltInputMatrix(contact, loads, loads->load, &B, &rom->ninputs));
+  PetscCall(PetscTime(&t1));
+  PetscCall(BoltKrylovCreate(o->comm, &kry));
+  PetscCall(BoltKrylovSetFromOptions(kry));
+  PetscCall(BoltAssemblerDamping(asmb, &C));
+  PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
+  PetscCall(BoltKrylovBuild(kry, asmb->M, C, asmb->K, B, &V));
+  PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t2));
+  PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
+  PetscCall(PetscLogEventBegin(boltLog.projection, 0, 0, 0, 0));
+  PetscCall(BoltProject(V, asmb->M, &rom->Mr));
+  PetscCall(BoltProject(V, C, &rom->Cr));
+  PetscCall(BoltProject(V, asmb->K, &rom->Kr));
+  PetscCall(BoltProjectVec(V, loads->load, &rom->loadr));
+  PetscCall(BoltProjectVec(V, loads->preload, &rom->preloadr));
+  PetscCall(BoltROMExtractRows(rom, V, loads));
+  PetscCall(PetscLogEventEnd(boltLog.projection, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t3));
+  rom->order = kry->order;
+  rom->s0    = kry->s0;
+  for (PetscInt k = 0; k < 8; k++) rom->rankPerOrder[k] = kry->rankPerOrder[k];
+  rom->tInputs  = t1 - t0;
+  rom->tBasis   = t2 - t1;
+  rom->tProject = t3 - t2;
+  rom->tFactor  = kry->tFactor;
+  rom->tSolve   = kry->tSolve;
+  rom->tOrth    = kry->tOrth;
+  rom->tOffline = t3 - t0;
+  PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
+  PetscCall(BoltKrylovDestroy(&kry));
+  PetscCall(BVDestroy(&B));
+  PetscCall(BVDestroy(&V));
+  PetscCall(MatDestroy(&C));
+  *romp = rom;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltROMDestroy(BoltROM **romp)
+{
+  BoltROM *rom = *romp;
+
+  PetscFunctionBeginUser;
+  if (!rom) PetscFunctionReturn(0);
+  PetscCall(MatDestroy(&rom->Mr));
+  PetscCall(MatDestroy(&rom->Cr));
+  PetscCall(MatDestroy(&rom->Kr));
+  PetscCall(MatDestroy(&rom->Kcr));
+  PetscCall(VecDestroy(&rom->loadr));
+  PetscCall(VecDestroy(&rom->preloadr));
+  PetscCall(PetscFree(rom->Vc));
+  PetscCall(PetscFree(rom->Vprobe));
+  PetscCall(PetscFree(rom->Ke));
+  PetscCall(PetscFree3(rom->work, rom->work2, rom->dK));
+  PetscCall(PetscFree(*romp));
+  PetscFunctionReturn(0);
+}
+
+/* Errors of a ROM history against the FOM's (DESIGN section 4): relative L2 over all steps, and
+   the mean pointwise relative error over the steps where |u_FOM| > 1% of its maximum. */
+PetscErrorCode BoltHistoryErrors(PetscInt n, const PetscReal fom[], const PetscReal rom[], PetscReal *eL2, PetscReal *eMean)
+{
+  PetscReal num = 0, den = 0, umax = 0, sum = 0;
+  PetscInt  cnt = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; i++) {
+    num += PetscSqr(rom[i] - fom[i]);
+    den += PetscSqr(fom[i]);
+    umax = PetscMax(umax, PetscAbsReal(fom[i]));
+  }
+  for (PetscInt i = 0; i < n; i++)
+    if (PetscAbsReal(fom[i]) > 0.01 * umax) {
+      sum += PetscAbsReal(rom[i] - fom[i]) / PetscAbsReal(fom[i]);
+      cnt++;
+    }
+  *eL2   = den > 0 ? PetscSqrtReal(num / den) : 0;
+  *eMean = cnt ? sum / cnt : 0;
+  PetscFunctionReturn(0);
+}

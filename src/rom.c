@@ -1,0 +1,160 @@
+/* The reduced-order operator: small dense matrices on every rank, solved redundantly with
+   LAPACK (cheaper than broadcasting the solution), and the contact DOFs reached through the
+   rows of the basis: u_c = V_c q_r, F_r = V_c' f_c summed over ranks, and
+   K_cr = sum_e V_e' K_e V_e updated only for elements whose active points changed. */
+#include "boltrom.h"
+#include <petscblaslapack.h>
+
+static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
+{
+  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltContactSet    *c   = rom->contact;
+  const PetscScalar *x;
+  PetscScalar       *u, one = 1.0, zero = 0.0;
+  PetscBLASInt       m, n, inc = 1;
+
+  PetscFunctionBeginUser;
+  if (!c->nlocal) PetscFunctionReturn(0);
+  PetscCall(PetscBLASIntCast(c->nlocal, &m));
+  PetscCall(PetscBLASIntCast(rom->n, &n));
+  PetscCall(VecGetArrayRead(q, &x));
+  PetscCall(VecGetArray(c->uc, &u));
+  PetscCallBLAS("BLASgemv", BLASgemv_("N", &m, &n, &one, rom->Vc, &m, x, &inc, &zero, u, &inc));
+  PetscCall(VecRestoreArray(c->uc, &u));
+  PetscCall(VecRestoreArrayRead(q, &x));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ROMContactForces(BoltOperator *op, Vec F)
+{
+  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltContactSet    *c   = rom->contact;
+  const PetscScalar *f;
+  PetscScalar       *y, one = 1.0, zero = 0.0;
+  PetscBLASInt       m, n, inc = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(F, &y));
+  if (c->nlocal) {
+    PetscCall(PetscBLASIntCast(c->nlocal, &m));
+    PetscCall(PetscBLASIntCast(rom->n, &n));
+    PetscCall(VecGetArrayRead(c->fc, &f));
+    PetscCallBLAS("BLASgemv", BLASgemv_("T", &m, &n, &one, rom->Vc, &m, f, &inc, &zero, y, &inc));
+    PetscCall(VecRestoreArrayRead(c->fc, &f));
+  } else
+    for (PetscInt j = 0; j < rom->n; j++) y[j] = 0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, y, (PetscMPIInt)rom->n, MPIU_SCALAR, MPIU_SUM, rom->comm));
+  PetscCall(VecRestoreArray(F, &y));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
+{
+  BoltROM        *rom = (BoltROM *)op->ctx;
+  BoltContactSet *c   = rom->contact;
+  PetscInt        n = rom->n, changed = 0, any;
+  PetscBLASInt    bn, b24 = 24;
+  PetscScalar     one = 1.0, zero = 0.0, *Ve = rom->work, *T = rom->work2, *dK = rom->dK, *K;
+  PetscReal       Knew[576];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(n, &bn));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    PetscScalar delta[576];
+    if (!c->dirty[e]) continue;
+    PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], &c->active[4 * e], Knew));
+    for (PetscInt k = 0; k < 576; k++) {
+      delta[k]              = Knew[k] - rom->Ke[576 * e + k];
+      rom->Ke[576 * e + k] = Knew[k];
+    }
+    c->dirty[e] = PETSC_FALSE;
+    for (PetscInt k = 0; k < 24; k++) {
+      PetscInt loc = c->elemLocal[24 * e + k];
+      for (PetscInt j = 0; j < n; j++) Ve[k + 24 * j] = loc >= 0 ? rom->Vc[loc + c->nlocal * j] : 0.0;
+    }
+    if (!changed) PetscCall(PetscArrayzero(dK, n * n));
+    PetscCallBLAS("BLASgemm", BLASgemm_("N", "N", &b24, &bn, &b24, &one, delta, &b24, Ve, &b24, &zero, T, &b24));
+    PetscCallBLAS("BLASgemm", BLASgemm_("T", "N", &bn, &bn, &b24, &one, Ve, &b24, T, &b24, &one, dK, &bn));
+    changed++;
+  }
+  PetscCall(MPIU_Allreduce(&changed, &any, 1, MPIU_INT, MPI_SUM, rom->comm));
+  if (any) {
+    if (!changed) PetscCall(PetscArrayzero(dK, n * n));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, dK, (PetscMPIInt)(n * n), MPIU_SCALAR, MPIU_SUM, rom->comm));
+    PetscCall(MatDenseGetArray(rom->Kcr, &K));
+    for (PetscInt k = 0; k < n * n; k++) K[k] += dK[k];
+    PetscCall(MatDenseRestoreArray(rom->Kcr, &K));
+    PetscCall(MatAssemblyBegin(rom->Kcr, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(rom->Kcr, MAT_FINAL_ASSEMBLY));
+  }
+  *Kc = rom->Kcr;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ROMProbe(BoltOperator *op, Vec q, PetscReal *value)
+{
+  BoltROM           *rom = (BoltROM *)op->ctx;
+  const PetscScalar *x;
+  PetscReal          v = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(q, &x));
+  for (PetscInt j = 0; j < rom->n; j++) v += rom->Vprobe[j] * PetscRealPart(x[j]);
+  PetscCall(VecRestoreArrayRead(q, &x));
+  *value = v;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
+{
+  BoltOperator *op;
+  PetscInt      n = rom->n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&op));
+  op->name       = "ROM";
+  op->comm       = rom->comm;
+  op->solverType = MATSOLVERPETSC;
+  PetscCall(PetscStrncpy(op->prefix, "rom_", sizeof(op->prefix)));
+  op->M       = rom->Mr;
+  op->C       = rom->Cr;
+  op->K       = rom->Kr;
+  op->load    = rom->loadr;
+  op->preload = rom->preloadr;
+  PetscCall(PetscObjectReference((PetscObject)op->M));
+  PetscCall(PetscObjectReference((PetscObject)op->C));
+  PetscCall(PetscObjectReference((PetscObject)op->K));
+  PetscCall(PetscObjectReference((PetscObject)op->load));
+  PetscCall(PetscObjectReference((PetscObject)op->preload));
+  op->contact              = rom->contact;
+  op->ctx                  = rom;
+  op->contactDisplacements = ROMContactDisplacements;
+  op->contactForces        = ROMContactForces;
+  op->contactStiffness     = ROMContactStiffness;
+  op->probe                = ROMProbe;
+  /* K_cr starts empty with every element due for an update */
+  if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
+  PetscCall(MatZeroEntries(rom->Kcr));
+  PetscCall(PetscFree(rom->Ke));
+  PetscCall(PetscCalloc1(576 * rom->contact->nelem + 1, &rom->Ke));
+  PetscCall(PetscFree3(rom->work, rom->work2, rom->dK));
+  PetscCall(PetscMalloc3(24 * n + 1, &rom->work, 24 * n + 1, &rom->work2, n * n + 1, &rom->dK));
+  for (PetscInt e = 0; e < rom->contact->nelem; e++) rom->contact->dirty[e] = PETSC_TRUE;
+  *opp = op;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltROMOperatorDestroy(BoltOperator **opp)
+{
+  BoltOperator *op = *opp;
+
+  PetscFunctionBeginUser;
+  if (!op) PetscFunctionReturn(0);
+  PetscCall(MatDestroy(&op->M));
+  PetscCall(MatDestroy(&op->C));
+  PetscCall(MatDestroy(&op->K));
+  PetscCall(VecDestroy(&op->load));
+  PetscCall(VecDestroy(&op->preload));
+  PetscCall(PetscFree(*opp));
+  PetscFunctionReturn(0);
+}
