@@ -185,6 +185,7 @@ struct BoltOperator_s {
   const char      *name;     /* "FOM" or "ROM" */
   MPI_Comm         comm;     /* for messages and errors (the ROM's matrices live on every rank) */
   MatSolverType    solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
+  PetscBool        exactConstraints; /* every contact gap can be closed (FOM, ROM without interface reduction) */
   char             prefix[16]; /* options prefix of its solver: fom_ or rom_ */
   Mat              M, C, K;
   Vec              load, preload; /* external load pattern and preload, in its coordinates */
@@ -261,6 +262,7 @@ typedef struct {
   PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];
   PetscReal       s0, tOffline, tInputs, tBasis, tProject, tFactor, tSolve, tOrth, tInterface;
   PetscBool       fromFile;
+  PetscReal       orthogonality; /* max |V'V - I|, or -1 if not measured */
   char            fingerprint[256];
 } BoltROM;
 
@@ -271,6 +273,7 @@ typedef struct {
   char       file[PETSC_MAX_PATH_LEN];
   PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
+  PetscBool  checkOrthogonality;
 } BoltReductionOptions;
 
 PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);
@@ -278,6 +281,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *, BoltAssembler *, BoltContact
 PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMOperatorDestroy(BoltOperator **);
 PetscErrorCode BoltROMDestroy(BoltROM **);
+PetscErrorCode BoltROMCheckAtS0(BoltROM *, BoltOperator *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscReal *);
 PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *);
 
 /* ------------------------------------------------------------------ analysis.c */

@@ -18,6 +18,10 @@ typedef struct {
   PetscInt  rank;                               /* final dimension of V */
   PetscReal tFactor, tSolve, tOrth;             /* seconds */
   PetscInt  nsolves;                            /* right-hand sides solved with the factored Kt */
+  /* Optional replacement of the Kt solve (e.g. the interface-reduced, bordered solve): Sol(:, 0:nc)
+     = Kt^{-1} Rhs(:, 0:nc) in the caller's sense. When set, Kt is neither formed nor factored. */
+  PetscErrorCode (*solve)(void *, BV, BV, PetscInt);
+  void     *solveCtx;
 } BoltKrylov;
 
 PetscErrorCode BoltKrylovCreate(MPI_Comm, BoltKrylov **);

@@ -52,6 +52,7 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   op->name       = "FOM";
   op->comm       = asmb->mesh->comm;
   op->solverType = MATSOLVERMUMPS;
+  op->exactConstraints = PETSC_TRUE;
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
   op->M = asmb->M;
   op->K = asmb->K;

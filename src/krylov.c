@@ -10,8 +10,9 @@
 
    Orthogonalization is block classical Gram-Schmidt, twice (BCGS2): a block projection against U
    with BLAS3, column-wise CGS with refinement inside the block (where the deflation is decided),
-   then both again. A column is dropped when its norm after orthogonalization is below
-   deflationTol times its norm before. The same routine orthonormalizes the coefficient vectors. */
+   then both again unless no column lost more than 1/sqrt(2) of its norm. A column is dropped when
+   its norm after orthogonalization is below deflationTol times its norm before. The same routine
+   orthonormalizes the coefficient vectors. Only the last block needs no coefficients. */
 #include "boltrom_krylov.h"
 #include <petscksp.h>
 
@@ -164,6 +165,11 @@ static PetscErrorCode KrylovSolve(BoltKrylov *kr, Mat F, BV Rhs, BV Sol, PetscIn
   Mat A, X;
 
   PetscFunctionBeginUser;
+  if (kr->solve) {
+    PetscCall(kr->solve(kr->solveCtx, Rhs, Sol, nc));
+    kr->nsolves += nc;
+    PetscFunctionReturn(0);
+  }
   PetscCall(BVSetActiveColumns(Rhs, 0, nc));
   PetscCall(BVSetActiveColumns(Sol, 0, nc));
   PetscCall(BVGetMat(Rhs, &A));
@@ -268,7 +274,9 @@ PetscErrorCode BoltKrylovBuild(BoltKrylov *kr, Mat M, Mat C, Mat K, BV B, BV *V)
   kr->nsolves = 0;
   kr->tFactor = kr->tSolve = kr->tOrth = 0;
 
-  PetscCall(KrylovFactor(kr, M, C, K, &Kt, &ksp, &F));
+  Kt = F = NULL;
+  ksp = NULL;
+  if (!kr->solve) PetscCall(KrylovFactor(kr, M, C, K, &Kt, &ksp, &F));
 
   /* U holds p columns for block 0, then r0 per block; work blocks of nbw columns */
   nbw = PetscMin(kr->blockSize, p);

@@ -8,7 +8,7 @@ typedef struct {
   char      outputDir[PETSC_MAX_PATH_LEN];
   char      outputName[BOLTROM_NAME_LEN];
   char      summary[PETSC_MAX_PATH_LEN];
-  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom, rom;
+  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom, rom, romCheckS0;
   PetscInt  verifyField; /* 0 smooth, 1 linear */
   PetscInt  nev;
 } BoltRunOptions;
@@ -26,6 +26,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   o->nev          = 3;
   o->fom          = PETSC_FALSE;
   o->rom          = PETSC_FALSE;
+  o->romCheckS0   = PETSC_FALSE;
   o->verifyField  = 0;
   PetscOptionsBegin(comm, NULL, "Run", "boltrom");
   PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
@@ -35,6 +36,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
   PetscCall(PetscOptionsBool("-fom", "Run the full-order model with contact: static preload, then the Newmark transient", NULL, o->fom, &o->fom, NULL));
   PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));
+  PetscCall(PetscOptionsBool("-rom_check_s0", "Check the ROM against the FOM at s = s0 with every contact point active (exact for an order-1 ROM without interface reduction)", NULL, o->romCheckS0, &o->romCheckS0, NULL));
   PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
   PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));
   {
@@ -124,7 +126,7 @@ static PetscErrorCode BoltRun(void)
   BoltNewmark    *fomNm = NULL, *romNm = NULL;
   BoltOperator   *romOp = NULL;
   BoltROM        *rom   = NULL;
-  PetscReal       errL2 = 0, errMean = 0;
+  PetscReal       errL2 = 0, errMean = 0, romCheckError = -1;
   PetscReal       preloadForce[BOLTROM_MAX_PAIRS], tractionStats[3] = {0, 0, 0}, staticPenetration = 0, staticChange = 0;
   PetscInt        preloadActive = 0;
   Vec             u = NULL, x = NULL, Kx = NULL, Mx = NULL;
@@ -292,6 +294,7 @@ static PetscErrorCode BoltRun(void)
     PetscCall(BoltReductionOptionsSetFromOptions(comm, &ropt));
     PetscCall(BoltROMBuild(&ropt, asmb, contact, loads, &rom));
     PetscCall(BoltROMOperatorCreate(rom, &romOp));
+    if (opt.romCheckS0) PetscCall(BoltROMCheckAtS0(rom, romOp, asmb, contact, loads, &romCheckError));
     PetscCall(BoltNewmarkCreate(romOp, &romNm));
     PetscCall(BoltNewmarkSetFromOptions(romNm));
     romNm->preloadTarget = loads->hasPreload ? loads->preloadForce : 0;
@@ -467,6 +470,8 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONInt(&j, "inner_total", romNm->innerTotal));
       PetscCall(BoltJSONInt(&j, "failures", romNm->failures));
       PetscCall(BoltJSONReal(&j, "probe_final", romNm->probeValue[romNm->nsteps]));
+      if (opt.romCheckS0) PetscCall(BoltJSONReal(&j, "check_s0_error", romCheckError));
+      if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(&j, "orthogonality", rom->orthogonality));
       PetscCall(BoltJSONEndObject(&j));
       if (opt.fom) {
         PetscCall(BoltJSONReal(&j, "speedup", fomNm->tOnline / romNm->tOnline));

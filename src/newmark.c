@@ -228,7 +228,7 @@ static PetscErrorCode BoltInnerUzawa(BoltNewmark *nm, Vec rhs0, PetscInt *ninner
     nm->lastPenetration = pen;
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(pen), nm->op->comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", nm->op->name, nm->step, (double)(nm->step * nm->dt));
     if (!c->augment) break;
-    if (rel <= nm->tolLambda && pen <= nm->tolPenetration) break;
+    if (rel <= nm->tolLambda && (pen <= nm->tolPenetration || !nm->op->exactConstraints)) break;
     if (inner >= nm->maxInner) {
       PetscCall(BoltInnerFailure(nm, inner, rel, pen));
       break;
@@ -289,7 +289,9 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
     PetscCall(BoltContactSetPenetration(c, r, &pen));
     nm->lastChange      = rel;
     nm->lastPenetration = pen;
-    if (rel <= nm->tolLambda && pen <= nm->tolPenetration) break;
+    /* a reduced model may have fewer DOFs than contact constraints: there the penetration
+       cannot vanish everywhere, and the loop ends when the reduced forces stop changing */
+    if (rel <= nm->tolLambda && (pen <= nm->tolPenetration || !nm->op->exactConstraints)) break;
     if (inner >= nm->maxInner) {
       PetscCall(BoltInnerFailure(nm, inner, rel, pen));
       break;

@@ -2,6 +2,7 @@
    Krylov basis of boltrom_krylov.h, and the projection onto it (BoltROM). */
 #include "boltrom.h"
 #include "boltrom_krylov.h"
+#include "boltrom_interface.h"
 
 PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOptions *o)
 {
@@ -10,12 +11,17 @@ PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOp
   o->file[0]     = '\0';
   o->rebuild     = PETSC_TRUE;
   o->extraInputs = PETSC_FALSE;
-  o->nCCM = o->nJIM = 0;
+  o->checkOrthogonality = PETSC_FALSE;
+  o->nCCM = o->nJIM = 100; /* the paper's */
   PetscOptionsBegin(comm, NULL, "Reduction", "boltrom");
   PetscCall(PetscOptionsString("-rom_file", "ROM file (HDF5) to reuse if it matches, or to write", NULL, o->file, o->file, sizeof(o->file), NULL));
+  PetscCall(PetscOptionsInt("-rom_n_ccm", "Interface reduction: characteristic constraint mode vectors (0 and -rom_n_jim 0: no interface reduction)", NULL, o->nCCM, &o->nCCM, NULL));
+  PetscCall(PetscOptionsInt("-rom_n_jim", "Interface reduction: joint interface mode vectors", NULL, o->nJIM, &o->nJIM, NULL));
+  PetscCall(PetscOptionsBool("-rom_check_orthogonality", "Measure max |V'V - I| of the basis (costs n^2 N)", NULL, o->checkOrthogonality, &o->checkOrthogonality, NULL));
   PetscCall(PetscOptionsBool("-rom_rebuild", "Rebuild a ROM file that does not match the scene (false: refuse)", NULL, o->rebuild, &o->rebuild, NULL));
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   PetscOptionsEnd();
+  PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
   PetscFunctionReturn(0);
 }
 
@@ -154,6 +160,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
 {
   BoltROM       *rom;
   BoltKrylov    *kry;
+  BoltInterface *ir = NULL;
   BV             B, V;
   Mat            C;
   PetscLogDouble t0, t1, t2, t3;
@@ -163,16 +170,46 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(PetscNew(&rom));
   rom->comm    = o->comm;
   rom->contact = contact;
-  PetscCall(BoltInputMatrix(contact, loads, loads->load, &B, &rom->ninputs));
-  PetscCall(PetscTime(&t1));
   PetscCall(BoltKrylovCreate(o->comm, &kry));
   PetscCall(BoltKrylovSetFromOptions(kry));
   PetscCall(BoltAssemblerDamping(asmb, &C));
+  rom->nCCM = o->nCCM;
+  rom->nJIM = o->nJIM;
+  if (o->nCCM + o->nJIM > 0) {
+    /* the contact inputs collapse onto the reduced interface: inputs E_I V_IR, load, preload */
+    PetscCall(BoltInterfaceBuild(contact, asmb->M, C, asmb->K, kry->s0, o->nCCM, o->nJIM, kry->deflationTol, &ir));
+    PetscCall(BVCreate(o->comm, &B));
+    PetscCall(BVSetSizesFromVec(B, loads->load, ir->nIR + 2));
+    PetscCall(BVSetFromOptions(B));
+    PetscCall(BoltInterfaceInputs(ir, B, 0));
+    PetscCall(BVInsertVec(B, ir->nIR, loads->load));
+    PetscCall(BVInsertVec(B, ir->nIR + 1, loads->preload));
+    rom->ninputs  = ir->nIR + 2;
+    kry->solve    = BoltInterfaceSolve;
+    kry->solveCtx = ir;
+    rom->nCCM     = ir->rankCCM;
+    rom->nJIM     = ir->rankJIM;
+  } else PetscCall(BoltInputMatrix(contact, loads, loads->load, &B, &rom->ninputs));
+  PetscCall(PetscTime(&t1));
+  rom->tInterface = t1 - t0;
   PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
   PetscCall(BoltKrylovBuild(kry, asmb->M, C, asmb->K, B, &V));
   PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
+  rom->orthogonality = -1;
+  if (o->checkOrthogonality) { /* max |V'V - I| */
+    Mat G;
+    const PetscScalar *g;
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, rom->n, rom->n, NULL, &G));
+    PetscCall(BVDot(V, V, G));
+    PetscCall(MatDenseGetArrayRead(G, &g));
+    rom->orthogonality = 0;
+    for (PetscInt i = 0; i < rom->n; i++)
+      for (PetscInt j = 0; j < rom->n; j++) rom->orthogonality = PetscMax(rom->orthogonality, PetscAbsScalar(g[i + rom->n * j] - (i == j ? 1.0 : 0.0)));
+    PetscCall(MatDenseRestoreArrayRead(G, &g));
+    PetscCall(MatDestroy(&G));
+  }
   PetscCall(PetscLogEventBegin(boltLog.projection, 0, 0, 0, 0));
   PetscCall(BoltProject(V, asmb->M, &rom->Mr));
   PetscCall(BoltProject(V, C, &rom->Cr));
@@ -185,7 +222,8 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   rom->order = kry->order;
   rom->s0    = kry->s0;
   for (PetscInt k = 0; k < 8; k++) rom->rankPerOrder[k] = kry->rankPerOrder[k];
-  rom->tInputs  = t1 - t0;
+  rom->tInputs  = ir ? 0 : t1 - t0;
+  if (!ir) rom->tInterface = 0;
   rom->tBasis   = t2 - t1;
   rom->tProject = t3 - t2;
   rom->tFactor  = kry->tFactor;
@@ -194,6 +232,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   rom->tOffline = t3 - t0;
   PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
   PetscCall(BoltKrylovDestroy(&kry));
+  PetscCall(BoltInterfaceDestroy(&ir));
   PetscCall(BVDestroy(&B));
   PetscCall(BVDestroy(&V));
   PetscCall(MatDestroy(&C));

@@ -1,0 +1,68 @@
+"""The reduced-order model: the Krylov basis (unit checks), exactness of contact as a low-rank
+input at s0, accuracy against the FOM, interface reduction, and rank independence."""
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import ENV, ROOT, run_summary
+
+ROM = ["-static", "false", "-modal_nev", "0", "-rom"]
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_krylov_unit_checks(ranks):
+    """Orthonormality (orders 1-4, 8), moment matching (orders 1-3, and the next moment does
+    not match), deflation of duplicated and zero columns, 1 vs all ranks: tests/c/test_krylov.c."""
+    cmd = ([] if ranks == 1 else ["mpiexec", "-n", str(ranks)]) + [str(ROOT / "bin" / "test_krylov")]
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, timeout=600)
+    lines = [l for l in proc.stdout.splitlines() if l.startswith(("PASS", "FAIL"))]
+    assert proc.returncode == 0 and lines and not any(l.startswith("FAIL") for l in lines), proc.stdout + proc.stderr
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_contact_as_low_rank_input_is_exact_at_s0(joint_small, tmp_path, order):
+    """Tied joint, (s0^2 M + s0 C + K + K_c) q = f: the ROM without interface reduction
+    (K_cr = V' K_c V) reproduces it to 1e-8; its basis is orthonormal to 1e-12."""
+    mesh, _ = joint_small
+    s = run_summary(["-mesh", mesh] + ROM + ["-rom_n_ccm", "0", "-rom_n_jim", "0", "-krylov_order", order,
+                     "-rom_check_s0", "-rom_check_orthogonality", "-ts_dt", "1e-4", "-ts_end", "2e-4",
+                     "-output", "false"], tmp_path)
+    assert s["rom"]["check_s0_error"] < 1e-8
+    assert s["rom"]["orthogonality"] < 1e-12
+    assert s["rom"]["dim"] == order * s["rom"]["inputs"]
+
+
+def test_rom_matches_fom_without_interface_reduction(joint_small, tmp_path):
+    mesh, _ = joint_small
+    s = run_summary(["-mesh", mesh, "-fom"] + ROM + ["-rom_n_ccm", "0", "-rom_n_jim", "0", "-krylov_order", "2",
+                     "-ts_dt", "1e-4", "-ts_end", "0.01", "-output", "false"], tmp_path)
+    e = s["errors"]["load_point"]
+    print("ROM (order 2, no interface reduction) against FOM:", e, "dim", s["rom"]["dim"])
+    assert e["e_L2"] < 1e-3
+
+
+def test_rom_with_interface_reduction(joint_small, tmp_path):
+    """CCM + JIM: the interface basis is orthonormal, the ROM is small, and it follows the FOM."""
+    mesh, _ = joint_small
+    s = run_summary(["-mesh", mesh, "-fom"] + ROM + ["-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "2",
+                     "-rom_check_orthogonality", "-ts_dt", "1e-4", "-ts_end", "0.01", "-output", "false"], tmp_path)
+    r = s["rom"]
+    print("ROM (CCM+JIM 100+100, order 2) against FOM:", s["errors"]["load_point"], "dim", r["dim"])
+    assert 0 < r["n_ccm"] <= 100 and 0 < r["n_jim"] <= 100
+    assert r["inputs"] == r["n_ccm"] + r["n_jim"] + 2 and r["dim"] <= 2 * r["inputs"]
+    assert r["orthogonality"] < 1e-12
+    assert s["errors"]["load_point"]["e_L2"] < 0.15
+
+
+def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path):
+    mesh, _ = joint_small
+    hist = {}
+    for ranks in (1, 2):
+        d = tmp_path / f"np{ranks}"
+        run_summary(["-mesh", mesh] + ROM + ["-rom_n_ccm", "0", "-rom_n_jim", "0", "-ts_dt", "1e-4", "-ts_end", "5e-3",
+                     "-contact_tol_lambda", "1e-9", "-contact_max_inner", "1000", "-output_dir", d], d, ranks=ranks)
+        with h5py.File(d / "joint.h5") as f:
+            hist[ranks] = f["/rom/probe"][...]
+    assert np.abs(hist[1] - hist[2]).max() <= 1e-8 * np.abs(hist[1]).max()
