@@ -263,7 +263,7 @@ typedef struct {
   PetscReal       s0, tOffline, tInputs, tBasis, tProject, tFactor, tSolve, tOrth, tInterface;
   PetscBool       fromFile;
   PetscReal       orthogonality; /* max |V'V - I|, or -1 if not measured */
-  char            fingerprint[256];
+  char            fingerprint[2048];
 } BoltROM;
 
 typedef struct {
@@ -281,6 +281,9 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *, BoltAssembler *, BoltContact
 PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMOperatorDestroy(BoltOperator **);
 PetscErrorCode BoltROMDestroy(BoltROM **);
+PetscErrorCode BoltROMFingerprint(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscInt, PetscReal, PetscReal, PetscInt, PetscInt, char[], size_t);
+PetscErrorCode BoltROMSave(BoltROM *, BV, BoltAssembler *, BoltLoadSet *, const char[], const char[]);
+PetscErrorCode BoltROMLoad(const char[], const char[], BoltReductionOptions *, BoltContactSet *, BoltLoadSet *, BoltROM **, PetscBool *, char[], size_t);
 PetscErrorCode BoltROMCheckAtS0(BoltROM *, BoltOperator *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscReal *);
 PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *);
 

@@ -246,7 +246,7 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
 {
   BoltContactSet *c  = nm->op->contact;
   PetscInt        ng = 12 * c->nelem, inner;
-  PetscReal      *r = nm->cgR, *p = nm->cgP, *Ap = nm->cgAp, rr, pAp, alpha, rel = 0, pen = 0, lnorm, pnorm;
+  PetscReal      *r = nm->cgR, *p = nm->cgP, *Ap = nm->cgAp, rr, rr0, pAp, alpha, rel = 0, pen = 0, lnorm, pnorm;
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
@@ -257,6 +257,7 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
   PetscCall(BoltContactSetPenetration(c, r, &pen));
   PetscCall(PetscArraycpy(p, r, ng));
   PetscCall(BoltContactSetDot(c, r, r, &rr));
+  rr0 = rr;
   for (inner = 1;; inner++) {
     PetscReal rrNew;
 
@@ -285,18 +286,19 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
     PetscCall(VecNorm(nm->Fc, NORM_2, &pnorm));
     PetscCall(VecNorm(nm->FcLambda, NORM_2, &lnorm));
     rel = lnorm > 0 ? PetscAbsReal(alpha) * pnorm / lnorm : 0;
-    if (getenv("BOLT_DEBUG")) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  cg %3d rel %.3e pen %.3e rr %.3e\n", (int)inner, (double)rel, (double)pen, (double)rr));
     PetscCall(BoltContactSetPenetration(c, r, &pen));
     nm->lastChange      = rel;
     nm->lastPenetration = pen;
     /* a reduced model may have fewer DOFs than contact constraints: there the penetration
-       cannot vanish everywhere, and the loop ends when the reduced forces stop changing */
-    if (rel <= nm->tolLambda && (pen <= nm->tolPenetration || !nm->op->exactConstraints)) break;
+       cannot vanish everywhere, and the loop ends when the reduced forces stop changing or the
+       gaps have dropped by the tolerance */
+    if (rel <= nm->tolLambda && pen <= nm->tolPenetration) break;
+    PetscCall(BoltContactSetDot(c, r, r, &rrNew));
+    if (!nm->op->exactConstraints && (rel <= nm->tolLambda || PetscSqrtReal(rrNew / rr0) <= nm->tolLambda)) break;
     if (inner >= nm->maxInner) {
       PetscCall(BoltInnerFailure(nm, inner, rel, pen));
       break;
     }
-    PetscCall(BoltContactSetDot(c, r, r, &rrNew));
     for (PetscInt k = 0; k < ng; k++) p[k] = r[k] + (rrNew / rr) * p[k];
     rr = rrNew;
   }

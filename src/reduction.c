@@ -172,6 +172,28 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   rom->contact = contact;
   PetscCall(BoltKrylovCreate(o->comm, &kry));
   PetscCall(BoltKrylovSetFromOptions(kry));
+  PetscCall(BoltROMFingerprint(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, rom->fingerprint, sizeof(rom->fingerprint)));
+  if (o->file[0]) {
+    PetscBool exists, matched;
+    char      why[256];
+    PetscCall(PetscTestFile(o->file, 'r', &exists));
+    if (exists) {
+      BoltROM *loaded = NULL;
+      PetscCall(BoltROMLoad(o->file, rom->fingerprint, o, contact, loads, &loaded, &matched, why, sizeof(why)));
+      if (matched) {
+        PetscCall(PetscTime(&t3));
+        loaded->tOffline = t3 - t0;
+        PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
+        PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
+        PetscCall(BoltKrylovDestroy(&kry));
+        PetscCall(PetscFree(rom));
+        *romp = loaded;
+        PetscFunctionReturn(0);
+      }
+      PetscCheck(o->rebuild, o->comm, PETSC_ERR_USER_INPUT, "ROM file %s does not match this scene (%s): remove it, point -rom_file elsewhere, or let it be rebuilt with -rom_rebuild", o->file, why);
+      PetscCall(PetscPrintf(o->comm, "ROM file %s does not match this scene (%s): rebuilding it\n", o->file, why));
+    }
+  }
   PetscCall(BoltAssemblerDamping(asmb, &C));
   rom->nCCM = o->nCCM;
   rom->nJIM = o->nJIM;
@@ -231,6 +253,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   rom->tOrth    = kry->tOrth;
   rom->tOffline = t3 - t0;
   PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
+  if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file, rom->fingerprint));
   PetscCall(BoltKrylovDestroy(&kry));
   PetscCall(BoltInterfaceDestroy(&ir));
   PetscCall(BVDestroy(&B));

@@ -66,3 +66,29 @@ def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path):
         with h5py.File(d / "joint.h5") as f:
             hist[ranks] = f["/rom/probe"][...]
     assert np.abs(hist[1] - hist[2]).max() <= 1e-8 * np.abs(hist[1]).max()
+
+
+def test_rom_file_reuse_and_refusal(joint_small, tmp_path):
+    """One ROM file serves two load amplitudes without rebuilding; a changed material rebuilds it
+    (or is refused), and a load that is not an input is refused unless the user opts in."""
+    from conftest import run_boltrom
+    mesh, _ = joint_small
+    rom_file = tmp_path / "joint.rom.h5"
+    base = ["-mesh", mesh] + ROM + ["-ts_dt", "1e-4", "-ts_end", "1e-3", "-output", "false", "-rom_file", rom_file,
+                                      "-contact_tol_lambda", "1e-8", "-contact_max_inner", "2000"]
+    a = run_summary(base + ["-load_force", "10"], tmp_path, name="a")
+    b = run_summary(base + ["-load_force", "20"], tmp_path, name="b")
+    assert a["rom"]["source"] == "built" and b["rom"]["source"] == "file"
+    assert b["rom"]["offline_basis_s"] == 0 and b["rom"]["dim"] == a["rom"]["dim"]
+    # linear in the load around the preloaded state: the 20 N response is twice the 10 N one
+    p0 = run_summary(base + ["-load_force", "0"], tmp_path, name="p0")["rom"]["probe_final"]
+    assert abs((b["rom"]["probe_final"] - p0) / (a["rom"]["probe_final"] - p0) - 2) < 1e-3
+    proc = run_boltrom(base + ["-material_steel_E", "200e9", "-rom_rebuild", "false", "-output_dir", tmp_path / "x"], check=False)
+    assert proc.returncode != 0 and "does not match this scene" in proc.stderr and "2e+11" in proc.stderr
+    c = run_summary(base + ["-material_steel_E", "200e9"], tmp_path, name="c")
+    assert c["rom"]["source"] == "built"
+    proc = run_boltrom(base + ["-material_steel_E", "200e9", "-load_group", "corner_point", "-probe_group", "corner_point"], check=False)
+    assert proc.returncode != 0 and "-rom_allow_foreign_load" in proc.stderr
+    d = run_summary(base + ["-material_steel_E", "200e9", "-load_group", "corner_point", "-probe_group", "corner_point",
+                            "-rom_allow_foreign_load"], tmp_path, name="d")
+    assert d["rom"]["source"] == "file"

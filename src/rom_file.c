@@ -1,0 +1,417 @@
+/* The ROM file (HDF5): everything the online phase needs, and a fingerprint of what the basis
+   depends on (mesh, materials, damping, penalties, reduction options, which loads are inputs;
+   not their amplitudes). A scene with a matching file skips the offline phase; a file that does
+   not match is rebuilt or refused, never used silently. Rows of the basis are kept only at the
+   contact DOFs and at the point groups (loads, probes). */
+#include "boltrom.h"
+#include <petscviewerhdf5.h>
+
+static PetscErrorCode BoltFileHash(MPI_Comm comm, const char path[], unsigned long long *hash)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  *hash = 1469598103934665603ULL; /* FNV-1a */
+  if (rank == 0) {
+    FILE *fp = fopen(path, "rb");
+    int   ch;
+    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot read %s", path);
+    while ((ch = fgetc(fp)) != EOF) *hash = (*hash ^ (unsigned long long)(unsigned char)ch) * 1099511628211ULL;
+    fclose(fp);
+  }
+  PetscCallMPI(MPI_Bcast(hash, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+/* A readable description of everything the basis depends on; the load is checked apart (a file
+   built for one load may serve another at a point whose rows it keeps, if the user asks). */
+PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, PetscInt order, PetscReal s0, PetscReal defl, PetscInt nCCM, PetscInt nJIM, char fp[], size_t len)
+{
+  BoltMesh          *m = asmb->mesh;
+  unsigned long long h;
+  PetscMPIInt        size;
+  char               part[64];
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(m->comm, &size));
+  PetscCall(BoltFileHash(m->comm, m->filename, &h));
+  PetscCall(PetscSNPrintf(fp, len, "mesh %016llx; ranks %d; partitioner %s; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, size, m->partitioner, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
+  for (PetscInt p = 0; p < m->nparts; p++) {
+    const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
+    PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g %.6g %.6g", m->partName[p], (double)mat->E, (double)mat->nu, (double)mat->rho));
+    PetscCall(PetscStrlcat(fp, part, len));
+  }
+  for (PetscInt p = 0; p < c->npairs; p++) {
+    PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g", c->pairName[p], (double)c->epsN[p]));
+    PetscCall(PetscStrlcat(fp, part, len));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Owned contact DOFs (every DOF of a contact element, whichever rank keeps the element). */
+static PetscErrorCode BoltOwnedContactDofs(BoltContactSet *c, Vec layout, PetscInt *n, PetscInt **dofs)
+{
+  Vec                mark;
+  const PetscScalar *a;
+  PetscInt           rstart, rend;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(layout, &mark));
+  PetscCall(VecZeroEntries(mark));
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt k = 0; k < 24; k++)
+      if (c->elem[e].dofs[k] >= 0) PetscCall(VecSetValue(mark, c->elem[e].dofs[k], 1.0, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(mark));
+  PetscCall(VecAssemblyEnd(mark));
+  PetscCall(VecGetOwnershipRange(mark, &rstart, &rend));
+  PetscCall(PetscMalloc1(rend - rstart + 1, dofs));
+  *n = 0;
+  PetscCall(VecGetArrayRead(mark, &a));
+  for (PetscInt i = 0; i < rend - rstart; i++)
+    if (PetscRealPart(a[i]) != 0) (*dofs)[(*n)++] = rstart + i;
+  PetscCall(VecRestoreArrayRead(mark, &a));
+  PetscCall(VecDestroy(&mark));
+  PetscFunctionReturn(0);
+}
+
+/* A dense array (rows x cols, row-major) known on rank 0, written as an (rows, cols) dataset. */
+static PetscErrorCode BoltWriteArray(PetscViewer v, MPI_Comm comm, const char name[], PetscInt rows, PetscInt cols, const PetscScalar *a)
+{
+  Vec         w;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(VecCreateMPI(comm, rank == 0 ? rows * cols : 0, rows * cols, &w));
+  if (cols > 1) PetscCall(VecSetBlockSize(w, cols));
+  PetscCall(PetscObjectSetName((PetscObject)w, name));
+  if (rank == 0) {
+    PetscScalar *x;
+    PetscCall(VecGetArray(w, &x));
+    PetscCall(PetscArraycpy(x, a, rows * cols));
+    PetscCall(VecRestoreArray(w, &x));
+  }
+  PetscCall(VecView(w, v));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltReadArray(PetscViewer v, const char name[], PetscInt rows, PetscInt cols, PetscScalar *a)
+{
+  Vec          w;
+  PetscInt     n;
+  PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(PETSC_COMM_SELF, &w));
+  if (cols > 1) PetscCall(VecSetBlockSize(w, cols));
+  PetscCall(PetscObjectSetName((PetscObject)w, name));
+  PetscCall(VecLoad(w, v));
+  PetscCall(VecGetSize(w, &n));
+  PetscCheck(n == rows * cols, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file: dataset %s has %" PetscInt_FMT " entries, expected %" PetscInt_FMT, name, n, rows * cols);
+  PetscCall(VecGetArray(w, &x));
+  PetscCall(PetscArraycpy(a, x, n));
+  PetscCall(VecRestoreArray(w, &x));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
+/* Rows of V at the three DOFs of a point group's vertex, rows[d n + j], on every rank. */
+static PetscErrorCode BoltPointRows(BoltMesh *m, BV V, const char group[], PetscInt n, PetscScalar rows[], PetscBool *found)
+{
+  PetscInt nv, *verts, total, rstart;
+  Vec      col;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(rows, 3 * n));
+  PetscCall(BoltMeshGroupVertices(m, group, PETSC_TRUE, &nv, &verts));
+  PetscCall(MPIU_Allreduce(&nv, &total, 1, MPIU_INT, MPI_SUM, m->comm));
+  *found = total == 1 ? PETSC_TRUE : PETSC_FALSE;
+  if (nv == 1) {
+    PetscInt idx[3];
+    PetscCall(BoltMeshVertexDofs(m, verts[0], idx));
+    for (PetscInt j = 0; j < n; j++) {
+      const PetscScalar *x;
+      PetscCall(BVGetColumn(V, j, &col));
+      PetscCall(VecGetOwnershipRange(col, &rstart, NULL));
+      PetscCall(VecGetArrayRead(col, &x));
+      for (PetscInt d = 0; d < 3; d++) rows[d * n + j] = idx[d] >= 0 ? x[idx[d] - rstart] : 0.0;
+      PetscCall(VecRestoreArrayRead(col, &x));
+      PetscCall(BVRestoreColumn(V, j, &col));
+    }
+  } else
+    for (PetscInt j = 0; j < n; j++) { /* collective column access on every rank */
+      PetscCall(BVGetColumn(V, j, &col));
+      PetscCall(BVRestoreColumn(V, j, &col));
+    }
+  PetscCall(PetscFree(verts));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rows, (PetscMPIInt)(3 * n), MPIU_SCALAR, MPIU_SUM, m->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet *loads, const char file[], const char fingerprint[])
+{
+  MPI_Comm     comm = rom->comm;
+  BoltMesh    *m    = asmb->mesh;
+  PetscViewer  v;
+  PetscMPIInt  rank;
+  char         tmp[PETSC_MAX_PATH_LEN], groups[256] = "";
+  PetscInt     ncd, *cd, npts = 0, n = rom->n;
+  PetscScalar *a;
+  const char  *candidates[] = {"load_point", "corner_point", loads->loadGroup, loads->probeGroup};
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp", file));
+  PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
+  {
+    const PetscScalar *x;
+    PetscCall(MatDenseGetArrayRead(rom->Mr, &x));
+    PetscCall(BoltWriteArray(v, comm, "Mr", n, n, x));
+    PetscCall(MatDenseRestoreArrayRead(rom->Mr, &x));
+    PetscCall(MatDenseGetArrayRead(rom->Cr, &x));
+    PetscCall(BoltWriteArray(v, comm, "Cr", n, n, x));
+    PetscCall(MatDenseRestoreArrayRead(rom->Cr, &x));
+    PetscCall(MatDenseGetArrayRead(rom->Kr, &x));
+    PetscCall(BoltWriteArray(v, comm, "Kr", n, n, x));
+    PetscCall(MatDenseRestoreArrayRead(rom->Kr, &x));
+  }
+  /* loads per unit amplitude: the file serves any amplitude */
+  PetscCall(PetscMalloc1(2 * n + 1, &a));
+  {
+    const PetscScalar *x, *y;
+    PetscCall(VecGetArrayRead(rom->loadr, &x));
+    PetscCall(VecGetArrayRead(rom->preloadr, &y));
+    for (PetscInt j = 0; j < n; j++) {
+      a[j]     = loads->loadForce != 0 ? x[j] / loads->loadForce : 0;
+      a[n + j] = loads->preloadForce != 0 ? y[j] / loads->preloadForce : 0;
+    }
+    PetscCall(VecRestoreArrayRead(rom->loadr, &x));
+    PetscCall(VecRestoreArrayRead(rom->preloadr, &y));
+  }
+  PetscCall(BoltWriteArray(v, comm, "load_unit", n, 1, a));
+  PetscCall(BoltWriteArray(v, comm, "preload_unit", n, 1, &a[n]));
+  PetscCall(PetscFree(a));
+  /* rows at the contact DOFs, each rank its owned ones, in global order */
+  PetscCall(BoltOwnedContactDofs(rom->contact, loads->load, &ncd, &cd));
+  {
+    Vec          w, d;
+    PetscScalar *x, *y;
+    PetscInt     rstart;
+    PetscCall(VecCreateMPI(comm, ncd * n, PETSC_DETERMINE, &w));
+    PetscCall(VecSetBlockSize(w, n));
+    PetscCall(PetscObjectSetName((PetscObject)w, "Vc"));
+    PetscCall(VecCreateMPI(comm, ncd, PETSC_DETERMINE, &d));
+    PetscCall(PetscObjectSetName((PetscObject)d, "contact_dofs"));
+    PetscCall(VecGetArray(w, &x));
+    PetscCall(VecGetArray(d, &y));
+    for (PetscInt i = 0; i < ncd; i++) y[i] = (PetscScalar)cd[i];
+    for (PetscInt j = 0; j < n; j++) {
+      Vec                col;
+      const PetscScalar *c;
+      PetscCall(BVGetColumn(V, j, &col));
+      PetscCall(VecGetOwnershipRange(col, &rstart, NULL));
+      PetscCall(VecGetArrayRead(col, &c));
+      for (PetscInt i = 0; i < ncd; i++) x[i * n + j] = c[cd[i] - rstart];
+      PetscCall(VecRestoreArrayRead(col, &c));
+      PetscCall(BVRestoreColumn(V, j, &col));
+    }
+    PetscCall(VecRestoreArray(w, &x));
+    PetscCall(VecRestoreArray(d, &y));
+    PetscCall(VecView(w, v));
+    PetscCall(VecView(d, v));
+    PetscCall(VecDestroy(&w));
+    PetscCall(VecDestroy(&d));
+  }
+  PetscCall(PetscFree(cd));
+  /* rows at the point groups (loads and probes a later scene may use) */
+  {
+    PetscScalar *rows;
+    PetscCall(PetscMalloc1(4 * 3 * n + 1, &rows));
+    for (PetscInt g = 0; g < 4; g++) {
+      PetscBool found = PETSC_FALSE, dup = PETSC_FALSE;
+      for (PetscInt h = 0; h < g; h++) {
+        PetscBool same;
+        PetscCall(PetscStrcmp(candidates[g], candidates[h], &same));
+        dup = (PetscBool)(dup || same);
+      }
+      if (dup) continue;
+      PetscCall(BoltPointRows(m, V, candidates[g], n, &rows[3 * n * npts], &found));
+      if (!found) continue;
+      if (npts) PetscCall(PetscStrlcat(groups, ",", sizeof(groups)));
+      PetscCall(PetscStrlcat(groups, candidates[g], sizeof(groups)));
+      npts++;
+    }
+    PetscCall(BoltWriteArray(v, comm, "Vpoints", 3 * npts, n, rows));
+    PetscCall(PetscFree(rows));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "fingerprint", PETSC_STRING, fingerprint));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, groups));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "input_load", PETSC_STRING, loads->loadGroup));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "dimension", PETSC_INT, &n));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "order", PETSC_INT, &rom->order));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "inputs", PETSC_INT, &rom->ninputs));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "n_ccm", PETSC_INT, &rom->nCCM));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "n_jim", PETSC_INT, &rom->nJIM));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "s0", PETSC_REAL, &rom->s0));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "offline_s", PETSC_REAL, &rom->tOffline));
+  PetscCall(PetscViewerDestroy(&v));
+  if (rank == 0) PetscCheck(rename(tmp, file) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp, file);
+  PetscCallMPI(MPI_Barrier(comm));
+  PetscCall(PetscPrintf(comm, "ROM written to %s (dimension %" PetscInt_FMT ", rows at %" PetscInt_FMT " contact DOFs per rank and at %s)\n", file, n, ncd, groups));
+  PetscFunctionReturn(0);
+}
+
+/* Loads a matching ROM file. *matched is false (and nothing is loaded) when the fingerprint
+   differs; *why then says what differs first. */
+PetscErrorCode BoltROMLoad(const char file[], const char fingerprint[], BoltReductionOptions *o, BoltContactSet *c, BoltLoadSet *loads, BoltROM **romp, PetscBool *matched, char why[], size_t whylen)
+{
+  MPI_Comm     comm = o->comm;
+  PetscViewer  v;
+  char        *fp = NULL, *groups = NULL, *input = NULL;
+  PetscInt     n, ncd, npts = 0;
+  PetscScalar *a, *Vc, *cdofs, *Vpoints;
+  BoltROM     *rom;
+  PetscBool    same;
+
+  PetscFunctionBeginUser;
+  *matched = PETSC_FALSE;
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, file, FILE_MODE_READ, &v));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "fingerprint", PETSC_STRING, NULL, &fp));
+  PetscCall(PetscStrcmp(fp, fingerprint, &same));
+  if (!same) {
+    /* first differing field, for the message */
+    char  *x = fp, *y = (char *)fingerprint;
+    size_t k = 0;
+    while (x[k] && y[k] && x[k] == y[k]) k++;
+    while (k > 0 && x[k - 1] != ';') k--;
+    PetscCall(PetscSNPrintf(why, whylen, "file has '%.60s', scene needs '%.60s'", x + k, y + k));
+    PetscCall(PetscFree(fp));
+    PetscCall(PetscViewerDestroy(&v));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscFree(fp));
+  PetscCall(PetscNew(&rom));
+  rom->comm     = comm;
+  rom->contact  = c;
+  rom->fromFile = PETSC_TRUE;
+  rom->orthogonality = -1;
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "dimension", PETSC_INT, NULL, &n));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "order", PETSC_INT, NULL, &rom->order));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "inputs", PETSC_INT, NULL, &rom->ninputs));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "n_ccm", PETSC_INT, NULL, &rom->nCCM));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "n_jim", PETSC_INT, NULL, &rom->nJIM));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "s0", PETSC_REAL, NULL, &rom->s0));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, NULL, &groups));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "input_load", PETSC_STRING, NULL, &input));
+  rom->n = n;
+  PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Mr));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Cr));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kr));
+  {
+    PetscScalar *x;
+    PetscCall(MatDenseGetArray(rom->Mr, &x));
+    PetscCall(BoltReadArray(v, "Mr", n, n, x));
+    PetscCall(MatDenseRestoreArray(rom->Mr, &x));
+    PetscCall(MatDenseGetArray(rom->Cr, &x));
+    PetscCall(BoltReadArray(v, "Cr", n, n, x));
+    PetscCall(MatDenseRestoreArray(rom->Cr, &x));
+    PetscCall(MatDenseGetArray(rom->Kr, &x));
+    PetscCall(BoltReadArray(v, "Kr", n, n, x));
+    PetscCall(MatDenseRestoreArray(rom->Kr, &x));
+  }
+  /* point rows: which groups, 3 rows each */
+  {
+    char **names;
+    int    nn;
+    PetscCall(PetscStrToArray(groups, ',', &nn, &names));
+    npts = nn;
+    PetscCall(PetscMalloc1(3 * npts * n + 1, &Vpoints));
+    PetscCall(BoltReadArray(v, "Vpoints", 3 * npts, n, Vpoints));
+    /* the load: an input of this ROM, or a point group whose rows are here (if allowed) */
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &rom->loadr));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &rom->preloadr));
+    PetscCall(PetscMalloc1(n + 1, &a));
+    PetscCall(PetscStrcmp(input, loads->loadGroup, &same));
+    if (same) {
+      PetscCall(BoltReadArray(v, "load_unit", n, 1, a));
+      for (PetscInt j = 0; j < n; j++) a[j] *= loads->loadForce;
+    } else {
+      PetscInt g = -1;
+      for (PetscInt k = 0; k < npts; k++) {
+        PetscBool s;
+        PetscCall(PetscStrcmp(names[k], loads->loadGroup, &s));
+        if (s) g = k;
+      }
+      PetscCheck(o->extraInputs, comm, PETSC_ERR_USER_INPUT, "ROM file %s was built for the load at '%s', not at '%s': rebuild it for this load, or run it anyway with -rom_allow_foreign_load (the load then acts through a basis that was not built for it)", file, input, loads->loadGroup);
+      PetscCheck(g >= 0, comm, PETSC_ERR_USER_INPUT, "ROM file %s has no rows of the basis at '%s' (it has %s): the load cannot be projected; rebuild the ROM", file, loads->loadGroup, groups);
+      for (PetscInt j = 0; j < n; j++) {
+        a[j] = 0;
+        for (PetscInt d = 0; d < 3; d++) a[j] += loads->loadForce * loads->loadDirection[d] * Vpoints[(3 * g + d) * n + j];
+      }
+      PetscCall(PetscPrintf(comm, "ROM: the load at '%s' is not an input of %s (built for '%s'): projected with the stored rows, as asked\n", loads->loadGroup, file, input));
+    }
+    {
+      PetscScalar *x;
+      PetscCall(VecGetArray(rom->loadr, &x));
+      PetscCall(PetscArraycpy(x, a, n));
+      PetscCall(VecRestoreArray(rom->loadr, &x));
+      PetscCall(BoltReadArray(v, "preload_unit", n, 1, a));
+      PetscCall(VecGetArray(rom->preloadr, &x));
+      for (PetscInt j = 0; j < n; j++) x[j] = a[j] * loads->preloadForce;
+      PetscCall(VecRestoreArray(rom->preloadr, &x));
+    }
+    /* the probe row */
+    {
+      PetscInt g = -1;
+      for (PetscInt k = 0; k < npts; k++) {
+        PetscBool s;
+        PetscCall(PetscStrcmp(names[k], loads->probeGroup, &s));
+        if (s) g = k;
+      }
+      PetscCheck(g >= 0, comm, PETSC_ERR_USER_INPUT, "ROM file %s has no rows of the basis at the probe '%s' (it has %s): rebuild the ROM", file, loads->probeGroup, groups);
+      PetscCall(PetscMalloc1(n + 1, &rom->Vprobe));
+      for (PetscInt j = 0; j < n; j++) rom->Vprobe[j] = PetscRealPart(Vpoints[(3 * g + loads->probeComponent) * n + j]);
+    }
+    PetscCall(PetscStrToArrayDestroy(nn, names));
+    PetscCall(PetscFree(a));
+    PetscCall(PetscFree(Vpoints));
+  }
+  /* rows at this rank's contact DOFs */
+  {
+    Vec w;
+    PetscCall(VecCreate(PETSC_COMM_SELF, &w));
+    PetscCall(PetscObjectSetName((PetscObject)w, "contact_dofs"));
+    PetscCall(VecLoad(w, v));
+    PetscCall(VecGetSize(w, &ncd));
+    PetscCall(PetscMalloc2(ncd + 1, &cdofs, ncd * n + 1, &Vc));
+    PetscCall(VecGetArray(w, &a));
+    PetscCall(PetscArraycpy(cdofs, a, ncd));
+    PetscCall(VecRestoreArray(w, &a));
+    PetscCall(VecDestroy(&w));
+    PetscCall(BoltReadArray(v, "Vc", ncd, n, Vc));
+    PetscCall(PetscCalloc1(c->nlocal * n + 1, &rom->Vc));
+    for (PetscInt i = 0; i < c->nlocal; i++) {
+      PetscInt lo = 0, hi = ncd, d = c->localGlobal[i];
+      while (lo < hi) {
+        PetscInt mid = (lo + hi) / 2;
+        if ((PetscInt)PetscRealPart(cdofs[mid]) < d) lo = mid + 1;
+        else hi = mid;
+      }
+      PetscCheck(lo < ncd && (PetscInt)PetscRealPart(cdofs[lo]) == d, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT ": rebuild it", file, d);
+      for (PetscInt j = 0; j < n; j++) rom->Vc[i + c->nlocal * j] = Vc[lo * n + j];
+    }
+    PetscCall(PetscFree2(cdofs, Vc));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscFree(groups));
+  PetscCall(PetscFree(input));
+  PetscCall(PetscViewerDestroy(&v));
+  *romp    = rom;
+  *matched = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
