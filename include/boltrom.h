@@ -163,7 +163,8 @@ typedef struct {
   char      preloadGroup[2][BOLTROM_NAME_LEN];
   PetscReal preloadAxis[3], preloadForce;
   PetscBool hasPreload;
-  Vec       load, preload; /* unit-amplitude-times-force patterns, global layout */
+  Vec       load, preload; /* the load and preload vectors, global layout */
+  Vec       loadUnit;      /* the load pattern of a 1 N force */
   char      probeGroup[BOLTROM_NAME_LEN]; /* probe: displacement component at this point group */
   PetscInt  probeComponent;
   PetscInt  probeDof;               /* global DOF of the probe on its owner, -1 elsewhere */
@@ -253,6 +254,7 @@ typedef struct {
   PetscInt        n;                 /* reduced dimension */
   Mat             Mr, Cr, Kr, Kcr;   /* MATSEQDENSE n x n on every rank */
   Vec             loadr, preloadr;   /* MATSEQ n */
+  Vec             loadUnitr;         /* V' (1 N load pattern), kept in the ROM file */
   PetscScalar    *Vc;                /* nlocal x n, column-major: rows of V at contact->localGlobal */
   PetscReal      *Vprobe;            /* n: the probe row of V */
   PetscReal      *Ke;                /* 576 per local contact element: the matrix inside Kcr */

@@ -204,8 +204,12 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
     }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hasFaces, 1, MPIU_INT, MPI_MAX, m->comm));
-  if (hasFaces) PetscCall(BoltLoadFaces(m, label, l->loadDirection, l->loadForce, l->load));
-  else PetscCall(BoltLoadSpread(m, l->loadGroup, l->loadDirection, l->loadForce, l->load, &n));
+  /* the pattern of a 1 N load, then scaled: a reduced model keeps the pattern */
+  PetscCall(VecDuplicate(layout, &l->loadUnit));
+  PetscCall(VecZeroEntries(l->loadUnit));
+  if (hasFaces) PetscCall(BoltLoadFaces(m, label, l->loadDirection, 1.0, l->loadUnit));
+  else PetscCall(BoltLoadSpread(m, l->loadGroup, l->loadDirection, 1.0, l->loadUnit, &n));
+  PetscCall(VecAXPY(l->load, l->loadForce, l->loadUnit));
   /* preload: pulls the two layers together, so the stud between them is shortened */
   {
     PetscBool hasLow, hasUp;
@@ -274,6 +278,7 @@ PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **ls)
   PetscFunctionBeginUser;
   if (!*ls) PetscFunctionReturn(0);
   PetscCall(VecDestroy(&(*ls)->load));
+  PetscCall(VecDestroy(&(*ls)->loadUnit));
   PetscCall(VecDestroy(&(*ls)->preload));
   PetscCall(PetscFree(*ls));
   PetscFunctionReturn(0);

@@ -290,11 +290,11 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
     nm->lastChange      = rel;
     nm->lastPenetration = pen;
     /* a reduced model may have fewer DOFs than contact constraints: there the penetration
-       cannot vanish everywhere, and the loop ends when the reduced forces stop changing or the
-       gaps have dropped by the tolerance */
+       cannot vanish everywhere, and the loop ends when the gaps (the dual residual) have dropped
+       by the tolerance, or the reduced forces stop changing */
     if (rel <= nm->tolLambda && pen <= nm->tolPenetration) break;
     PetscCall(BoltContactSetDot(c, r, r, &rrNew));
-    if (!nm->op->exactConstraints && (rel <= nm->tolLambda || PetscSqrtReal(rrNew / rr0) <= nm->tolLambda)) break;
+    if (!nm->op->exactConstraints && (PetscSqrtReal(rrNew / rr0) <= nm->tolLambda || rel <= 1e-2 * nm->tolLambda)) break;
     if (inner >= nm->maxInner) {
       PetscCall(BoltInnerFailure(nm, inner, rel, pen));
       break;

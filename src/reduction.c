@@ -90,7 +90,7 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
       PetscCall(BVRestoreColumn(*B, col, &v));
       col++;
     }
-  PetscCall(BVInsertVec(*B, col++, loads->load));
+  PetscCall(BVInsertVec(*B, col++, loads->loadUnit));
   PetscCall(BVInsertVec(*B, col++, loads->preload));
   PetscCall(PetscFree(pairs));
   PetscFunctionReturn(0);
@@ -204,7 +204,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     PetscCall(BVSetSizesFromVec(B, loads->load, ir->nIR + 2));
     PetscCall(BVSetFromOptions(B));
     PetscCall(BoltInterfaceInputs(ir, B, 0));
-    PetscCall(BVInsertVec(B, ir->nIR, loads->load));
+    PetscCall(BVInsertVec(B, ir->nIR, loads->loadUnit));
     PetscCall(BVInsertVec(B, ir->nIR + 1, loads->preload));
     rom->ninputs  = ir->nIR + 2;
     kry->solve    = BoltInterfaceSolve;
@@ -237,6 +237,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(BoltProject(V, C, &rom->Cr));
   PetscCall(BoltProject(V, asmb->K, &rom->Kr));
   PetscCall(BoltProjectVec(V, loads->load, &rom->loadr));
+  PetscCall(BoltProjectVec(V, loads->loadUnit, &rom->loadUnitr));
   PetscCall(BoltProjectVec(V, loads->preload, &rom->preloadr));
   PetscCall(BoltROMExtractRows(rom, V, loads));
   PetscCall(PetscLogEventEnd(boltLog.projection, 0, 0, 0, 0));
@@ -274,6 +275,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(MatDestroy(&rom->Kr));
   PetscCall(MatDestroy(&rom->Kcr));
   PetscCall(VecDestroy(&rom->loadr));
+  PetscCall(VecDestroy(&rom->loadUnitr));
   PetscCall(VecDestroy(&rom->preloadr));
   PetscCall(PetscFree(rom->Vc));
   PetscCall(PetscFree(rom->Vprobe));

@@ -182,13 +182,14 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(PetscMalloc1(2 * n + 1, &a));
   {
     const PetscScalar *x, *y;
-    PetscCall(VecGetArrayRead(rom->loadr, &x));
+    PetscCheck(loads->preloadForce != 0 || !loads->hasPreload, comm, PETSC_ERR_USER_INPUT, "A ROM file needs a nonzero -preload_force to store the preload pattern");
+    PetscCall(VecGetArrayRead(rom->loadUnitr, &x));
     PetscCall(VecGetArrayRead(rom->preloadr, &y));
     for (PetscInt j = 0; j < n; j++) {
-      a[j]     = loads->loadForce != 0 ? x[j] / loads->loadForce : 0;
+      a[j]     = x[j];
       a[n + j] = loads->preloadForce != 0 ? y[j] / loads->preloadForce : 0;
     }
-    PetscCall(VecRestoreArrayRead(rom->loadr, &x));
+    PetscCall(VecRestoreArrayRead(rom->loadUnitr, &x));
     PetscCall(VecRestoreArrayRead(rom->preloadr, &y));
   }
   PetscCall(BoltWriteArray(v, comm, "load_unit", n, 1, a));

@@ -75,7 +75,7 @@ def test_rom_file_reuse_and_refusal(joint_small, tmp_path):
     mesh, _ = joint_small
     rom_file = tmp_path / "joint.rom.h5"
     base = ["-mesh", mesh] + ROM + ["-ts_dt", "1e-4", "-ts_end", "1e-3", "-output", "false", "-rom_file", rom_file,
-                                      "-contact_tol_lambda", "1e-8", "-contact_max_inner", "2000"]
+                                      "-rom_n_ccm", "0", "-rom_n_jim", "0", "-contact_tol_lambda", "1e-8", "-contact_max_inner", "2000"]
     a = run_summary(base + ["-load_force", "10"], tmp_path, name="a")
     b = run_summary(base + ["-load_force", "20"], tmp_path, name="b")
     assert a["rom"]["source"] == "built" and b["rom"]["source"] == "file"
