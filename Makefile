@@ -16,7 +16,7 @@ SLEPC_VARS := $(wildcard $(SLEPC_DIR)/lib/slepc/conf/slepc_variables)
 ifeq ($(SLEPC_VARS),)
 # Nothing installed yet: install the stack, then run the same goal again.
 .DEFAULT_GOAL := all
-all bin/boltrom run test bench mesh tests-c verify:
+all bin/boltrom run test bench mesh tests-c verify stress:
 	bash scripts/install-deps
 	$(MAKE) $@
 else
@@ -75,6 +75,13 @@ run: deps all $(MESH_LEVEL1)
 	  -summary output/paper-step/summary.json
 	$(PYTHON) python/plot_history.py output/paper-step/step.png output/paper-step/paper-step.h5
 
+# FOM against ROM over reduction settings on the paper mesh; FOM stress sweep.
+bench: deps all
+	$(PYTHON) scripts/bench-rom --np $(NP) --level $(LEVEL)
+
+stress: deps all
+	$(PYTHON) scripts/stress-fom --np $(NP)
+
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all
 	$(PYTHON) scripts/verify-model --levels 1 2 3 --np $(NP)
@@ -85,5 +92,5 @@ test: deps all
 clean:
 	rm -rf build bin
 
-.PHONY: all deps run test mesh clean tests-c verify
+.PHONY: all deps run test mesh clean tests-c verify bench stress
 endif

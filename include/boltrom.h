@@ -127,6 +127,7 @@ typedef struct {
   PetscReal          *Ke;             /* 576 per element: stiffness of its active Gauss points */
   PetscBool          *dirty;          /* element whose activity changed since its Ke was built */
   Mat                 Kc;             /* contact stiffness in the global layout (COO) */
+  PetscBool           KcAssembled;    /* Kc holds the current element matrices */
   PetscInt            nactive, ngpGlobal;
 } BoltContactSet;
 

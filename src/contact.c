@@ -514,6 +514,7 @@ PetscErrorCode BoltContactSetResetState(BoltContactSet *c)
   PetscFunctionBeginUser;
   for (PetscInt g = 0; g < 4 * c->nelem; g++) c->active[g] = c->activeOld[g] = c->activeOlder[g] = PETSC_TRUE;
   for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
+  c->KcAssembled = PETSC_FALSE;
   PetscCall(PetscArrayzero(c->lambda, 12 * c->nelem));
   PetscCall(PetscArrayzero(c->gap, 12 * c->nelem));
   c->nactive = c->ngpGlobal;
@@ -665,20 +666,25 @@ PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[
 PetscErrorCode BoltContactSetStiffness(BoltContactSet *c, Mat *Kc)
 {
   PetscScalar *v;
+  PetscInt     changed = 0, any;
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
     if (!c->dirty[e]) continue;
     PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], &c->active[4 * e], &c->Ke[576 * e]));
     c->dirty[e] = PETSC_FALSE;
+    changed++;
   }
+  PetscCall(MPIU_Allreduce(&changed, &any, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+  *Kc = c->Kc;
+  if (!any && c->KcAssembled) PetscFunctionReturn(0); /* nothing changed since the last call */
+  c->KcAssembled = PETSC_TRUE;
 #if defined(PETSC_USE_COMPLEX)
   SETERRQ(c->mesh->comm, PETSC_ERR_SUP, "Real scalars only");
 #else
   v = (PetscScalar *)c->Ke;
 #endif
   PetscCall(MatSetValuesCOO(c->Kc, v, INSERT_VALUES));
-  *Kc = c->Kc;
   PetscFunctionReturn(0);
 }
 
