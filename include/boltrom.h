@@ -53,7 +53,8 @@ typedef struct {
   char              partMaterialMap[PETSC_MAX_PATH_LEN]; /* part:material,... */
   PetscInt          cStart, cEnd, vStart, vEnd;
   PetscInt         *cellPart;        /* part index of each local cell */
-  PetscBool        *vertexGhost;     /* vertex owned by another rank (vStart-based) */
+  PetscInt          pStart, pEnd;
+  PetscBT           pointGhost;      /* point owned by another rank (pStart-based) */
   PetscInt          partTag[BOLTROM_MAX_PARTS]; /* gmsh physical tag = label value */
   PetscInt          nverticesGlobal, ncellsGlobal, ndofsFree;
   PetscInt          edgeCut;         /* faces between cells of different ranks, after distribution */
@@ -72,7 +73,9 @@ PetscErrorCode BoltMeshCellDofs(BoltMesh *, PetscInt, PetscInt[24]);
 PetscErrorCode BoltMeshCellVertices(BoltMesh *, PetscInt, PetscInt[8]);
 PetscErrorCode BoltMeshVertexDofs(BoltMesh *, PetscInt, PetscInt[3]);
 PetscErrorCode BoltMeshVertexOwned(BoltMesh *, PetscInt, PetscBool *);
+PetscErrorCode BoltMeshGroupPoints(BoltMesh *, const char[], PetscBool, PetscInt *, PetscInt **);
 PetscErrorCode BoltMeshGroupVertices(BoltMesh *, const char[], PetscBool, PetscInt *, PetscInt **);
+PetscErrorCode BoltMeshFaceVertices(BoltMesh *, PetscInt, PetscInt *, PetscInt[4], PetscReal[12]);
 PetscErrorCode BoltMeshFillVertexField(BoltMesh *, PetscErrorCode (*)(const PetscReal[3], PetscInt, PetscReal[3], void *), void *, Vec);
 
 /* ------------------------------------------------------------------ assembly.c */

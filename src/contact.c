@@ -148,25 +148,12 @@ static PetscErrorCode BoltContactFindNode(PetscInt n, const BoltNode *nodes, con
 
 PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
 {
-  BoltMesh          *m = c->mesh;
-  PetscSF            sf;
-  PetscInt           nleaves, pStart, pEnd, cap = 256;
-  const PetscInt    *leaves;
-  PetscBT            ghost;
-  Vec                coords;
-  PetscSection       cs;
-  const PetscScalar *x;
+  BoltMesh *m   = c->mesh;
+  PetscInt  cap = 256;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(boltLog.contactSetUp, 0, 0, 0, 0));
   PetscCall(BoltContactFindPairs(c));
-  PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
-  PetscCall(PetscBTCreate(pEnd - pStart, &ghost));
-  PetscCall(DMGetPointSF(m->dm, &sf));
-  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
-  for (PetscInt i = 0; i < nleaves; i++) PetscCall(PetscBTSet(ghost, (leaves ? leaves[i] : i) - pStart));
-  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
-  PetscCall(DMGetCoordinateSection(m->dm, &cs));
   PetscCall(PetscMalloc1(cap, &c->elem));
   c->nelem       = 0;
   c->contactDofs = 0;
@@ -174,121 +161,89 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
     char            na[BOLTROM_NAME_LEN + 16], nb[BOLTROM_NAME_LEN + 16];
     PetscInt        nb_nodes, nunmatched = 0, partA = -1, partB = -1, nelemLocal = 0, counts[2], nvA, nvB, *vA, *vB;
     BoltNode       *bnodes = NULL;
-    DMLabel         label;
     PetscReal       area = 0, bad[3] = {0, 0, 0};
 
     PetscCall(PetscSNPrintf(na, sizeof(na), "contact_%s_a", c->pairName[p]));
     PetscCall(PetscSNPrintf(nb, sizeof(nb), "contact_%s_b", c->pairName[p]));
     PetscCall(BoltContactGatherNodes(c, nb, &nb_nodes, &bnodes));
-    PetscCall(DMGetLabel(m->dm, na, &label));
-    PetscCall(VecGetArrayRead(coords, &x));
-    if (label) {
-      IS              ids;
-      const PetscInt *id;
-      PetscInt        nids;
+    {
+      PetscInt nf, *faces;
+      PetscCall(BoltMeshGroupPoints(m, na, PETSC_TRUE, &nf, &faces));
+      for (PetscInt k = 0; k < nf; k++) {
+        PetscInt            face = faces[k], nvert, verts[4], nsupp, cell;
+        const PetscInt     *supp;
+        BoltContactElement *e;
+        PetscReal           X[12], cc[3] = {0, 0, 0}, fc[3] = {0, 0, 0}, nrm[3], hmin = PETSC_MAX_REAL, faceArea;
 
-      PetscCall(DMLabelGetValueIS(label, &ids));
-      PetscCall(ISGetLocalSize(ids, &nids));
-      PetscCall(ISGetIndices(ids, &id));
-      for (PetscInt s = 0; s < nids; s++) {
-        IS              faces;
-        const PetscInt *f;
-        PetscInt        nf;
-
-        PetscCall(DMLabelGetStratumIS(label, id[s], &faces));
-        if (!faces) continue;
-        PetscCall(ISGetLocalSize(faces, &nf));
-        PetscCall(ISGetIndices(faces, &f));
-        for (PetscInt k = 0; k < nf; k++) {
-          PetscInt            face = f[k], *cl = NULL, ncl, nvert = 0, verts[4], nsupp, cell, cverts[24];
-          const PetscInt     *supp;
-          BoltContactElement *e;
-          PetscReal           X[12], cc[3] = {0, 0, 0}, fc[3] = {0, 0, 0}, nrm[3], hmin = PETSC_MAX_REAL, faceArea;
-
-          if (PetscBTLookup(ghost, face - pStart)) continue;
-          PetscCall(DMPlexGetTransitiveClosure(m->dm, face, PETSC_TRUE, &ncl, &cl));
-          for (PetscInt q = 0; q < ncl; q++)
-            if (cl[2 * q] >= m->vStart && cl[2 * q] < m->vEnd && nvert < 4) verts[nvert++] = cl[2 * q];
-          PetscCall(DMPlexRestoreTransitiveClosure(m->dm, face, PETSC_TRUE, &ncl, &cl));
-          PetscCheck(nvert == 4, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Contact side %s: face with %" PetscInt_FMT " vertices; contact sides must be quadrilateral faces of hexahedra", na, nvert);
-          for (PetscInt a = 0; a < 4; a++) {
-            PetscInt off;
-            PetscCall(PetscSectionGetOffset(cs, verts[a], &off));
-            for (PetscInt d = 0; d < 3; d++) X[3 * a + d] = PetscRealPart(x[off + d]);
-          }
-          /* orient the face so its normal points out of part a */
-          PetscCall(DMPlexGetSupportSize(m->dm, face, &nsupp));
-          PetscCall(DMPlexGetSupport(m->dm, face, &supp));
-          PetscCheck(nsupp == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Contact side %s contains an interior face: contact surfaces must be on the boundary of their part, with distinct nodes on each side", na);
-          cell = supp[0];
-          if (partA < 0) partA = m->cellPart[cell - m->cStart];
-          {
-            PetscReal CX[24];
-            PetscCall(BoltMeshCellCoordinates(m, cell, CX));
-            for (PetscInt a = 0; a < 8; a++)
-              for (PetscInt d = 0; d < 3; d++) cc[d] += CX[3 * a + d] / 8;
-            (void)cverts;
-          }
-          for (PetscInt a = 0; a < 4; a++)
-            for (PetscInt d = 0; d < 3; d++) fc[d] += X[3 * a + d] / 4;
-          {
-            PetscReal d1[3], d2[3], dot = 0;
-            for (PetscInt d = 0; d < 3; d++) {
-              d1[d] = X[6 + d] - X[d];
-              d2[d] = X[9 + d] - X[3 + d];
-            }
-            nrm[0] = d1[1] * d2[2] - d1[2] * d2[1];
-            nrm[1] = d1[2] * d2[0] - d1[0] * d2[2];
-            nrm[2] = d1[0] * d2[1] - d1[1] * d2[0];
-            for (PetscInt d = 0; d < 3; d++) dot += nrm[d] * (fc[d] - cc[d]);
-            if (dot < 0) { /* reverse the cycle: 0 3 2 1 */
-              PetscInt  tv = verts[1];
-              PetscReal tx[3];
-              verts[1] = verts[3];
-              verts[3] = tv;
-              for (PetscInt d = 0; d < 3; d++) {
-                tx[d]        = X[3 + d];
-                X[3 + d]     = X[9 + d];
-                X[9 + d]     = tx[d];
-              }
-            }
-          }
-          for (PetscInt a = 0; a < 4; a++) {
-            PetscReal h = 0;
-            for (PetscInt d = 0; d < 3; d++) h += PetscSqr(X[3 * ((a + 1) % 4) + d] - X[3 * a + d]);
-            hmin = PetscMin(hmin, PetscSqrtReal(h));
-          }
-          if (c->nelem == cap) {
-            cap *= 2;
-            PetscCall(PetscRealloc(sizeof(BoltContactElement) * cap, &c->elem));
-          }
-          e       = &c->elem[c->nelem];
-          e->pair = p;
-          PetscCall(PetscArraycpy(e->Xa, X, 12));
-          for (PetscInt a = 0; a < 4; a++) {
-            const BoltNode *bn;
-            PetscCall(BoltMeshVertexDofs(m, verts[a], &e->dofs[3 * a]));
-            PetscCall(BoltContactFindNode(nb_nodes, bnodes, &X[3 * a], c->matchTolerance * hmin, &bn));
-            if (!bn) {
-              if (!nunmatched)
-                for (PetscInt d = 0; d < 3; d++) bad[d] = X[3 * a + d];
-              nunmatched++;
-              for (PetscInt d = 0; d < 3; d++) e->dofs[12 + 3 * a + d] = -1;
-            } else
-              for (PetscInt d = 0; d < 3; d++) e->dofs[12 + 3 * a + d] = bn->dofs[d];
-          }
-          PetscCall(QuadArea(X, &faceArea));
-          area += faceArea;
-          c->nelem++;
-          nelemLocal++;
+        PetscCall(BoltMeshFaceVertices(m, face, &nvert, verts, X));
+        PetscCheck(nvert == 4, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Contact side %s: face with %" PetscInt_FMT " vertices; contact sides must be quadrilateral faces of hexahedra", na, nvert);
+        /* orient the face so its normal points out of part a */
+        PetscCall(DMPlexGetSupportSize(m->dm, face, &nsupp));
+        PetscCall(DMPlexGetSupport(m->dm, face, &supp));
+        PetscCheck(nsupp == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Contact side %s contains an interior face: contact surfaces must be on the boundary of their part, with distinct nodes on each side", na);
+        cell = supp[0];
+        if (partA < 0) partA = m->cellPart[cell - m->cStart];
+        {
+          PetscReal CX[24];
+          PetscCall(BoltMeshCellCoordinates(m, cell, CX));
+          for (PetscInt a = 0; a < 8; a++)
+            for (PetscInt d = 0; d < 3; d++) cc[d] += CX[3 * a + d] / 8;
         }
-        PetscCall(ISRestoreIndices(faces, &f));
-        PetscCall(ISDestroy(&faces));
+        for (PetscInt a = 0; a < 4; a++)
+          for (PetscInt d = 0; d < 3; d++) fc[d] += X[3 * a + d] / 4;
+        {
+          PetscReal d1[3], d2[3], dot = 0;
+          for (PetscInt d = 0; d < 3; d++) {
+            d1[d] = X[6 + d] - X[d];
+            d2[d] = X[9 + d] - X[3 + d];
+          }
+          nrm[0] = d1[1] * d2[2] - d1[2] * d2[1];
+          nrm[1] = d1[2] * d2[0] - d1[0] * d2[2];
+          nrm[2] = d1[0] * d2[1] - d1[1] * d2[0];
+          for (PetscInt d = 0; d < 3; d++) dot += nrm[d] * (fc[d] - cc[d]);
+          if (dot < 0) { /* reverse the cycle: 0 3 2 1 */
+            PetscInt  tv = verts[1];
+            PetscReal tx;
+            verts[1] = verts[3];
+            verts[3] = tv;
+            for (PetscInt d = 0; d < 3; d++) {
+              tx        = X[3 + d];
+              X[3 + d]  = X[9 + d];
+              X[9 + d]  = tx;
+            }
+          }
+        }
+        for (PetscInt a = 0; a < 4; a++) {
+          PetscReal h = 0;
+          for (PetscInt d = 0; d < 3; d++) h += PetscSqr(X[3 * ((a + 1) % 4) + d] - X[3 * a + d]);
+          hmin = PetscMin(hmin, PetscSqrtReal(h));
+        }
+        if (c->nelem == cap) {
+          cap *= 2;
+          PetscCall(PetscRealloc(sizeof(BoltContactElement) * cap, &c->elem));
+        }
+        e       = &c->elem[c->nelem];
+        e->pair = p;
+        PetscCall(PetscArraycpy(e->Xa, X, 12));
+        for (PetscInt a = 0; a < 4; a++) {
+          const BoltNode *bn;
+          PetscCall(BoltMeshVertexDofs(m, verts[a], &e->dofs[3 * a]));
+          PetscCall(BoltContactFindNode(nb_nodes, bnodes, &X[3 * a], c->matchTolerance * hmin, &bn));
+          if (!bn) {
+            if (!nunmatched)
+              for (PetscInt d = 0; d < 3; d++) bad[d] = X[3 * a + d];
+            nunmatched++;
+            for (PetscInt d = 0; d < 3; d++) e->dofs[12 + 3 * a + d] = -1;
+          } else
+            for (PetscInt d = 0; d < 3; d++) e->dofs[12 + 3 * a + d] = bn->dofs[d];
+        }
+        PetscCall(QuadArea(X, &faceArea));
+        area += faceArea;
+        c->nelem++;
+        nelemLocal++;
       }
-      PetscCall(ISRestoreIndices(ids, &id));
-      PetscCall(ISDestroy(&ids));
+      PetscCall(PetscFree(faces));
     }
-    PetscCall(VecRestoreArrayRead(coords, &x));
     PetscCall(PetscFree(bnodes));
     {
       PetscInt  g;
@@ -310,36 +265,16 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
     PetscCall(BoltMeshGroupVertices(m, nb, PETSC_TRUE, &nvB, &vB));
     /* part of side b: from any local cell touching a side-b face */
     {
-      DMLabel lb;
-      PetscCall(DMGetLabel(m->dm, nb, &lb));
-      if (lb) {
-        IS ids;
-        PetscInt nids;
-        const PetscInt *id;
-        PetscCall(DMLabelGetValueIS(lb, &ids));
-        PetscCall(ISGetLocalSize(ids, &nids));
-        PetscCall(ISGetIndices(ids, &id));
-        for (PetscInt s = 0; s < nids && partB < 0; s++) {
-          IS faces;
-          PetscInt nf;
-          const PetscInt *f;
-          PetscCall(DMLabelGetStratumIS(lb, id[s], &faces));
-          if (!faces) continue;
-          PetscCall(ISGetLocalSize(faces, &nf));
-          PetscCall(ISGetIndices(faces, &f));
-          for (PetscInt k = 0; k < nf && partB < 0; k++) {
-            PetscInt nsupp;
-            const PetscInt *supp;
-            PetscCall(DMPlexGetSupportSize(m->dm, f[k], &nsupp));
-            PetscCall(DMPlexGetSupport(m->dm, f[k], &supp));
-            if (nsupp >= 1 && supp[0] >= m->cStart && supp[0] < m->cEnd) partB = m->cellPart[supp[0] - m->cStart];
-          }
-          PetscCall(ISRestoreIndices(faces, &f));
-          PetscCall(ISDestroy(&faces));
-        }
-        PetscCall(ISRestoreIndices(ids, &id));
-        PetscCall(ISDestroy(&ids));
+      PetscInt nf, *faces;
+      PetscCall(BoltMeshGroupPoints(m, nb, PETSC_FALSE, &nf, &faces));
+      for (PetscInt k = 0; k < nf && partB < 0; k++) {
+        PetscInt        nsupp;
+        const PetscInt *supp;
+        PetscCall(DMPlexGetSupportSize(m->dm, faces[k], &nsupp));
+        PetscCall(DMPlexGetSupport(m->dm, faces[k], &supp));
+        if (nsupp >= 1 && supp[0] >= m->cStart && supp[0] < m->cEnd) partB = m->cellPart[supp[0] - m->cStart];
       }
+      PetscCall(PetscFree(faces));
     }
     counts[0] = nvA;
     counts[1] = nvB;
@@ -367,7 +302,6 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
       c->epsN[p] = c->epsT[p] = factor * PetscMin(Ea, Eb);
     }
   }
-  PetscCall(PetscBTDestroy(&ghost));
   PetscCall(PetscLogEventEnd(boltLog.contactSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -75,95 +75,40 @@ static PetscErrorCode BoltLoadSpread(BoltMesh *m, const char group[], const Pets
 }
 
 /* Consistent share of a total force over a face group: each face's area in quarters. */
-static PetscErrorCode BoltLoadFaces(BoltMesh *m, DMLabel label, const PetscReal dir[3], PetscReal force, Vec f)
+static PetscErrorCode BoltLoadFaces(BoltMesh *m, PetscInt nfaces, const PetscInt faces[], const PetscReal dir[3], PetscReal force, Vec f)
 {
-  IS                 ids;
-  const PetscInt    *id;
-  PetscInt           nids, pStart, pEnd;
-  PetscReal          atot = 0, aglob;
-  PetscInt           nfaces = 0, cap = 64, *faceVerts;
-  PetscReal         *faceArea;
-  Vec                coords;
-  PetscSection       cs;
-  const PetscScalar *x;
-  PetscSF            sf;
-  PetscInt           nleaves;
-  const PetscInt    *leaves;
-  PetscBT            ghost;
+  PetscReal *area, atot = 0, aglob;
+  PetscInt  *fv;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
-  PetscCall(PetscBTCreate(pEnd - pStart, &ghost));
-  PetscCall(DMGetPointSF(m->dm, &sf));
-  PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
-  for (PetscInt i = 0; i < nleaves; i++) PetscCall(PetscBTSet(ghost, (leaves ? leaves[i] : i) - pStart));
-  PetscCall(PetscMalloc1(4 * cap, &faceVerts));
-  PetscCall(PetscMalloc1(cap, &faceArea));
-  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
-  PetscCall(DMGetCoordinateSection(m->dm, &cs));
-  PetscCall(VecGetArrayRead(coords, &x));
-  PetscCall(DMLabelGetValueIS(label, &ids));
-  PetscCall(ISGetLocalSize(ids, &nids));
-  PetscCall(ISGetIndices(ids, &id));
-  for (PetscInt s = 0; s < nids; s++) {
-    IS              pts;
-    const PetscInt *p;
-    PetscInt        np;
-    PetscCall(DMLabelGetStratumIS(label, id[s], &pts));
-    if (!pts) continue;
-    PetscCall(ISGetLocalSize(pts, &np));
-    PetscCall(ISGetIndices(pts, &p));
-    for (PetscInt k = 0; k < np; k++) {
-      PetscInt *cl = NULL, ncl, nv = 0, vv[4];
-      PetscReal X[12];
-      if (PetscBTLookup(ghost, p[k] - pStart)) continue;
-      PetscCall(DMPlexGetTransitiveClosure(m->dm, p[k], PETSC_TRUE, &ncl, &cl));
-      for (PetscInt q = 0; q < ncl; q++)
-        if (cl[2 * q] >= m->vStart && cl[2 * q] < m->vEnd && nv < 4) vv[nv++] = cl[2 * q];
-      PetscCall(DMPlexRestoreTransitiveClosure(m->dm, p[k], PETSC_TRUE, &ncl, &cl));
-      if (nv != 4) continue;
-      for (PetscInt a = 0; a < 4; a++) {
-        PetscInt off;
-        PetscCall(PetscSectionGetOffset(cs, vv[a], &off));
-        for (PetscInt d = 0; d < 3; d++) X[3 * a + d] = PetscRealPart(x[off + d]);
-      }
-      if (nfaces == cap) {
-        cap *= 2;
-        PetscCall(PetscRealloc(sizeof(PetscInt) * 4 * cap, &faceVerts));
-        PetscCall(PetscRealloc(sizeof(PetscReal) * cap, &faceArea));
-      }
-      PetscCall(QuadArea(X, &faceArea[nfaces]));
-      for (PetscInt a = 0; a < 4; a++) faceVerts[4 * nfaces + a] = vv[a];
-      atot += faceArea[nfaces++];
-    }
-    PetscCall(ISRestoreIndices(pts, &p));
-    PetscCall(ISDestroy(&pts));
+  PetscCall(PetscMalloc2(4 * nfaces + 1, &fv, nfaces + 1, &area));
+  for (PetscInt i = 0; i < nfaces; i++) {
+    PetscInt  nv;
+    PetscReal X[12];
+    PetscCall(BoltMeshFaceVertices(m, faces[i], &nv, &fv[4 * i], X));
+    PetscCheck(nv == 4, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Load surface: a face with %" PetscInt_FMT " vertices; surfaces must be quadrilateral faces of hexahedra", nv);
+    PetscCall(QuadArea(X, &area[i]));
+    atot += area[i];
   }
-  PetscCall(ISRestoreIndices(ids, &id));
-  PetscCall(ISDestroy(&ids));
-  PetscCall(VecRestoreArrayRead(coords, &x));
   PetscCall(MPIU_Allreduce(&atot, &aglob, 1, MPIU_REAL, MPI_SUM, m->comm));
   for (PetscInt i = 0; i < nfaces; i++)
     for (PetscInt a = 0; a < 4; a++) {
       PetscInt    idx[3];
       PetscScalar v[3];
-      PetscCall(BoltMeshVertexDofs(m, faceVerts[4 * i + a], idx));
-      for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] * faceArea[i] / (4 * aglob);
+      PetscCall(BoltMeshVertexDofs(m, fv[4 * i + a], idx));
+      for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] * area[i] / (4 * aglob);
       PetscCall(VecSetValues(f, 3, idx, v, ADD_VALUES));
     }
   PetscCall(VecAssemblyBegin(f));
   PetscCall(VecAssemblyEnd(f));
-  PetscCall(PetscFree(faceVerts));
-  PetscCall(PetscFree(faceArea));
-  PetscCall(PetscBTDestroy(&ghost));
+  PetscCall(PetscFree2(fv, area));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
 {
   BoltMesh *m = l->mesh;
-  PetscInt  n, hasFaces = 0, nv, *verts;
-  DMLabel   label;
+  PetscInt  n, hasFaces = 0, nv, *verts, nfaces, *faces;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(boltLog.loads, 0, 0, 0, 0));
@@ -174,42 +119,27 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
   PetscCall(PetscObjectSetName((PetscObject)l->load, "load"));
   PetscCall(PetscObjectSetName((PetscObject)l->preload, "preload"));
   /* a surface group spreads the force by area; a point group takes it whole */
-  PetscCall(DMGetLabel(m->dm, l->loadGroup, &label));
-  if (label) {
+  PetscCall(BoltMeshGroupPoints(m, l->loadGroup, PETSC_TRUE, &nfaces, &faces));
+  {
     PetscInt fStart, fEnd;
-    IS       ids;
     PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
-    PetscCall(DMLabelGetValueIS(label, &ids));
-    if (ids) {
-      PetscInt nids;
-      const PetscInt *id;
-      PetscCall(ISGetLocalSize(ids, &nids));
-      PetscCall(ISGetIndices(ids, &id));
-      for (PetscInt s = 0; s < nids; s++) {
-        IS pts;
-        PetscCall(DMLabelGetStratumIS(label, id[s], &pts));
-        if (pts) {
-          PetscInt np;
-          const PetscInt *p;
-          PetscCall(ISGetLocalSize(pts, &np));
-          PetscCall(ISGetIndices(pts, &p));
-          for (PetscInt k = 0; k < np; k++)
-            if (p[k] >= fStart && p[k] < fEnd) hasFaces = 1;
-          PetscCall(ISRestoreIndices(pts, &p));
-          PetscCall(ISDestroy(&pts));
-        }
-      }
-      PetscCall(ISRestoreIndices(ids, &id));
-      PetscCall(ISDestroy(&ids));
-    }
+    for (PetscInt k = 0; k < nfaces; k++)
+      if (faces[k] >= fStart && faces[k] < fEnd) hasFaces = 1;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hasFaces, 1, MPIU_INT, MPI_MAX, m->comm));
   /* the pattern of a 1 N load, then scaled: a reduced model keeps the pattern */
   PetscCall(VecDuplicate(layout, &l->loadUnit));
   PetscCall(VecZeroEntries(l->loadUnit));
-  if (hasFaces) PetscCall(BoltLoadFaces(m, label, l->loadDirection, 1.0, l->loadUnit));
+  if (hasFaces) {
+    PetscInt fStart, fEnd, n2 = 0;
+    PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
+    for (PetscInt k = 0; k < nfaces; k++)
+      if (faces[k] >= fStart && faces[k] < fEnd) faces[n2++] = faces[k];
+    PetscCall(BoltLoadFaces(m, n2, faces, l->loadDirection, 1.0, l->loadUnit));
+  }
   else PetscCall(BoltLoadSpread(m, l->loadGroup, l->loadDirection, 1.0, l->loadUnit, &n));
   PetscCall(VecAXPY(l->load, l->loadForce, l->loadUnit));
+  PetscCall(PetscFree(faces));
   /* preload: pulls the two layers together, so the stud between them is shortened */
   {
     PetscBool hasLow, hasUp;

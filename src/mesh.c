@@ -266,55 +266,106 @@ PetscErrorCode BoltMeshHasGroup(BoltMesh *m, const char name[], PetscBool *has)
   PetscFunctionReturn(0);
 }
 
-/* Vertices in the closure of every point of a group; unique, sorted; owned ones only if asked. */
-PetscErrorCode BoltMeshGroupVertices(BoltMesh *m, const char name[], PetscBool ownedOnly, PetscInt *nv, PetscInt **verts)
+/* Every point of a group (all values of its label): unique, sorted; owned ones only if asked. */
+PetscErrorCode BoltMeshGroupPoints(BoltMesh *m, const char name[], PetscBool ownedOnly, PetscInt *npoints, PetscInt **points)
 {
-  DMLabel   label;
-  IS        ids;
-  PetscInt  nids, n = 0, cap = 64, *v;
-  const PetscInt *id;
+  DMLabel  label;
+  PetscInt n = 0, cap = 64, *pts;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(cap, &v));
+  PetscCall(PetscMalloc1(cap, &pts));
   PetscCall(DMGetLabel(m->dm, name, &label));
   if (label) {
+    IS              ids;
+    const PetscInt *id;
+    PetscInt        nids;
+
     PetscCall(DMLabelGetValueIS(label, &ids));
     PetscCall(ISGetLocalSize(ids, &nids));
     PetscCall(ISGetIndices(ids, &id));
     for (PetscInt i = 0; i < nids; i++) {
-      IS              pts;
+      IS              stratum;
       const PetscInt *p;
       PetscInt        np;
 
-      PetscCall(DMLabelGetStratumIS(label, id[i], &pts));
-      if (!pts) continue;
-      PetscCall(ISGetLocalSize(pts, &np));
-      PetscCall(ISGetIndices(pts, &p));
+      PetscCall(DMLabelGetStratumIS(label, id[i], &stratum));
+      if (!stratum) continue;
+      PetscCall(ISGetLocalSize(stratum, &np));
+      PetscCall(ISGetIndices(stratum, &p));
       for (PetscInt j = 0; j < np; j++) {
-        PetscInt *cl = NULL, ncl;
-
-        PetscCall(DMPlexGetTransitiveClosure(m->dm, p[j], PETSC_TRUE, &ncl, &cl));
-        for (PetscInt k = 0; k < ncl; k++) {
-          PetscInt q = cl[2 * k];
-          if (q < m->vStart || q >= m->vEnd) continue;
-          if (ownedOnly && m->vertexGhost[q - m->vStart]) continue;
-          if (n == cap) {
-            cap *= 2;
-            PetscCall(PetscRealloc(sizeof(PetscInt) * cap, &v));
-          }
-          v[n++] = q;
+        if (ownedOnly && PetscBTLookup(m->pointGhost, p[j] - m->pStart)) continue;
+        if (n == cap) {
+          cap *= 2;
+          PetscCall(PetscRealloc(sizeof(PetscInt) * cap, &pts));
         }
-        PetscCall(DMPlexRestoreTransitiveClosure(m->dm, p[j], PETSC_TRUE, &ncl, &cl));
+        pts[n++] = p[j];
       }
-      PetscCall(ISRestoreIndices(pts, &p));
-      PetscCall(ISDestroy(&pts));
+      PetscCall(ISRestoreIndices(stratum, &p));
+      PetscCall(ISDestroy(&stratum));
     }
     PetscCall(ISRestoreIndices(ids, &id));
     PetscCall(ISDestroy(&ids));
   }
+  PetscCall(PetscSortRemoveDupsInt(&n, pts));
+  *npoints = n;
+  *points  = pts;
+  PetscFunctionReturn(0);
+}
+
+/* Vertices in the closure of every point of a group; unique, sorted; owned ones only if asked. */
+PetscErrorCode BoltMeshGroupVertices(BoltMesh *m, const char name[], PetscBool ownedOnly, PetscInt *nv, PetscInt **verts)
+{
+  PetscInt np, *pts, n = 0, cap = 64, *v;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltMeshGroupPoints(m, name, PETSC_FALSE, &np, &pts));
+  PetscCall(PetscMalloc1(cap, &v));
+  for (PetscInt j = 0; j < np; j++) {
+    PetscInt *cl = NULL, ncl;
+
+    PetscCall(DMPlexGetTransitiveClosure(m->dm, pts[j], PETSC_TRUE, &ncl, &cl));
+    for (PetscInt k = 0; k < ncl; k++) {
+      PetscInt q = cl[2 * k];
+      if (q < m->vStart || q >= m->vEnd) continue;
+      if (ownedOnly && PetscBTLookup(m->pointGhost, q - m->pStart)) continue;
+      if (n == cap) {
+        cap *= 2;
+        PetscCall(PetscRealloc(sizeof(PetscInt) * cap, &v));
+      }
+      v[n++] = q;
+    }
+    PetscCall(DMPlexRestoreTransitiveClosure(m->dm, pts[j], PETSC_TRUE, &ncl, &cl));
+  }
+  PetscCall(PetscFree(pts));
   PetscCall(PetscSortRemoveDupsInt(&n, v));
   *nv    = n;
   *verts = v;
+  PetscFunctionReturn(0);
+}
+
+/* The vertices of a face in closure order (cyclic for a quadrilateral) and their coordinates. */
+PetscErrorCode BoltMeshFaceVertices(BoltMesh *m, PetscInt face, PetscInt *nv, PetscInt verts[4], PetscReal X[12])
+{
+  PetscInt          *cl = NULL, ncl;
+  Vec                coords;
+  PetscSection       cs;
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  *nv = 0;
+  PetscCall(DMPlexGetTransitiveClosure(m->dm, face, PETSC_TRUE, &ncl, &cl));
+  for (PetscInt q = 0; q < ncl; q++)
+    if (cl[2 * q] >= m->vStart && cl[2 * q] < m->vEnd && *nv < 4) verts[(*nv)++] = cl[2 * q];
+  PetscCall(DMPlexRestoreTransitiveClosure(m->dm, face, PETSC_TRUE, &ncl, &cl));
+  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
+  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(VecGetArrayRead(coords, &x));
+  for (PetscInt a = 0; a < *nv; a++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(cs, verts[a], &off));
+    for (PetscInt d = 0; d < 3; d++) X[3 * a + d] = PetscRealPart(x[off + d]);
+  }
+  PetscCall(VecRestoreArrayRead(coords, &x));
   PetscFunctionReturn(0);
 }
 
@@ -398,13 +449,11 @@ PetscErrorCode BoltMeshSetUp(BoltMesh *m)
   m->dm = dm;
   PetscCall(DMPlexGetHeightStratum(dm, 0, &m->cStart, &m->cEnd));
   PetscCall(DMPlexGetDepthStratum(dm, 0, &m->vStart, &m->vEnd));
-  PetscCall(PetscCalloc1(m->vEnd - m->vStart + 1, &m->vertexGhost));
+  PetscCall(DMPlexGetChart(dm, &m->pStart, &m->pEnd));
+  PetscCall(PetscBTCreate(m->pEnd - m->pStart, &m->pointGhost));
   PetscCall(DMGetPointSF(dm, &sf));
   PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
-  for (PetscInt i = 0; i < nleaves; i++) {
-    PetscInt p = leaves ? leaves[i] : i;
-    if (p >= m->vStart && p < m->vEnd) m->vertexGhost[p - m->vStart] = PETSC_TRUE;
-  }
+  for (PetscInt i = 0; i < nleaves; i++) PetscCall(PetscBTSet(m->pointGhost, (leaves ? leaves[i] : i) - m->pStart));
   if (m->clamp) {
     PetscCall(BoltMeshHasGroup(m, m->clampGroup, &has));
     PetscCheck(has, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has no physical group '%s' to clamp: add it, set -clamp_group NAME, or run free-free with -clamp false", m->filename, m->clampGroup);
@@ -432,7 +481,7 @@ PetscErrorCode BoltMeshSetUp(BoltMesh *m)
     PetscInt nown = 0, ncell = m->cEnd - m->cStart, N;
     Vec      x;
     for (PetscInt v = m->vStart; v < m->vEnd; v++)
-      if (!m->vertexGhost[v - m->vStart]) nown++;
+      if (!PetscBTLookup(m->pointGhost, v - m->pStart)) nown++;
     PetscCall(MPIU_Allreduce(&nown, &m->nverticesGlobal, 1, MPIU_INT, MPI_SUM, m->comm));
     PetscCall(MPIU_Allreduce(&ncell, &m->ncellsGlobal, 1, MPIU_INT, MPI_SUM, m->comm));
     PetscCall(DMCreateGlobalVector(dm, &x));
@@ -510,7 +559,7 @@ PetscErrorCode BoltMeshCellDofs(BoltMesh *m, PetscInt c, PetscInt idx[24])
 PetscErrorCode BoltMeshVertexOwned(BoltMesh *m, PetscInt v, PetscBool *owned)
 {
   PetscFunctionBeginUser;
-  *owned = m->vertexGhost[v - m->vStart] ? PETSC_FALSE : PETSC_TRUE;
+  *owned = PetscBTLookup(m->pointGhost, v - m->pStart) ? PETSC_FALSE : PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -538,7 +587,7 @@ PetscErrorCode BoltMeshFillVertexField(BoltMesh *m, PetscErrorCode (*f)(const Pe
     PetscReal   X[3], val[3];
     PetscScalar sv[3];
 
-    if (m->vertexGhost[v - m->vStart]) continue;
+    if (PetscBTLookup(m->pointGhost, v - m->pStart)) continue;
     PetscCall(BoltMeshVertexDofs(m, v, idx));
     if (idx[0] < 0) continue;
     PetscCall(PetscSectionGetOffset(cs, v, &off));
@@ -575,7 +624,7 @@ PetscErrorCode BoltMeshDestroy(BoltMesh **mesh)
   if (!*mesh) PetscFunctionReturn(0);
   PetscCall(DMDestroy(&(*mesh)->dm));
   PetscCall(PetscFree((*mesh)->cellPart));
-  PetscCall(PetscFree((*mesh)->vertexGhost));
+  PetscCall(PetscBTDestroy(&(*mesh)->pointGhost));
   PetscCall(PetscFree(*mesh));
   PetscFunctionReturn(0);
 }
