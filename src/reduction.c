@@ -50,7 +50,10 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
   PetscCall(PetscMalloc1(displs[size] + 2, &all));
   PetscCallMPI(MPI_Allgatherv(pairs, mycount, MPIU_INT, all, counts, displs, MPIU_INT, comm));
   npairs = displs[size] / 2;
-  /* unique by the pair (a, b): sort on a key (a and b are both global DOFs, or -1 if clamped) */
+  /* unique by the pair (a, b): sort on a key (a and b are both global DOFs, or -1 if clamped);
+     the global list can be longer than this rank's */
+  PetscCall(PetscFree(pairs));
+  PetscCall(PetscMalloc1(2 * npairs + 2, &pairs));
   {
     PetscInt *key, *perm, n = 0;
     PetscCall(PetscMalloc2(npairs + 1, &key, npairs + 1, &perm));
