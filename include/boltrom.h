@@ -18,7 +18,7 @@ typedef struct {
   PetscLogEvent meshRead, meshDistribute, assembly, contactSetUp, contactAssembly, loads;
   PetscLogEvent factorization, staticSolve, modalSolve, output;
   PetscLogEvent contactStiffness, displacements, contactForces; /* the paper's Table 2 phases */
-  PetscLogEvent basis, projection;
+  PetscLogEvent basis, projection, krylovFactor, krylovSolve, krylovOrth, interfaceReduction;
   PetscLogStage stageSetUp, stageStatic, stageModal, stageOutput, stagePreload, stageTransient;
 } BoltLog;
 extern BoltLog boltLog;

@@ -13,6 +13,7 @@
    then both again unless no column lost more than 1/sqrt(2) of its norm. A column is dropped when
    its norm after orthogonalization is below deflationTol times its norm before. The same routine
    orthonormalizes the coefficient vectors. Only the last block needs no coefficients. */
+#include "boltrom.h" /* boltLog */
 #include "boltrom_krylov.h"
 #include <petscksp.h>
 
@@ -125,6 +126,7 @@ static PetscErrorCode KrylovAppend(BV U, PetscInt *r, BV W, PetscInt nw, PetscRe
   Vec       w;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.krylovOrth, 0, 0, 0, 0));
   PetscCall(BVSetActiveColumns(W, 0, nw));
   for (j = 0; j < nw; j++) {
     PetscCall(BVNormColumn(W, j, NORM_2, &nrm0[j]));
@@ -156,6 +158,7 @@ static PetscErrorCode KrylovAppend(BV U, PetscInt *r, BV W, PetscInt nw, PetscRe
   PetscCall(PetscInfo(W, "Krylov append: %" PetscInt_FMT " of %" PetscInt_FMT " columns kept, smallest kept norm ratio %g\n", k, nw, (double)minRatio));
   *r += k;
   if (nkept) *nkept = k;
+  PetscCall(PetscLogEventEnd(boltLog.krylovOrth, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -165,19 +168,19 @@ static PetscErrorCode KrylovSolve(BoltKrylov *kr, Mat F, BV Rhs, BV Sol, PetscIn
   Mat A, X;
 
   PetscFunctionBeginUser;
-  if (kr->solve) {
-    PetscCall(kr->solve(kr->solveCtx, Rhs, Sol, nc));
-    kr->nsolves += nc;
-    PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(boltLog.krylovSolve, 0, 0, 0, 0));
+  if (kr->solve) PetscCall(kr->solve(kr->solveCtx, Rhs, Sol, nc));
+  else {
+    PetscCall(BVSetActiveColumns(Rhs, 0, nc));
+    PetscCall(BVSetActiveColumns(Sol, 0, nc));
+    PetscCall(BVGetMat(Rhs, &A));
+    PetscCall(BVGetMat(Sol, &X));
+    PetscCall(MatMatSolve(F, A, X));
+    PetscCall(BVRestoreMat(Sol, &X));
+    PetscCall(BVRestoreMat(Rhs, &A));
   }
-  PetscCall(BVSetActiveColumns(Rhs, 0, nc));
-  PetscCall(BVSetActiveColumns(Sol, 0, nc));
-  PetscCall(BVGetMat(Rhs, &A));
-  PetscCall(BVGetMat(Sol, &X));
-  PetscCall(MatMatSolve(F, A, X));
-  PetscCall(BVRestoreMat(Sol, &X));
-  PetscCall(BVRestoreMat(Rhs, &A));
   kr->nsolves += nc;
+  PetscCall(PetscLogEventEnd(boltLog.krylovSolve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -209,6 +212,7 @@ static PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt,
   PetscReal      s0 = kr->s0, t0, t1;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.krylovFactor, 0, 0, 0, 0));
   PetscCall(PetscTime(&t0));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Kt));
   PetscCall(KrylovPattern(K, C, &strC));
@@ -240,6 +244,7 @@ static PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt,
   PetscCheck(!failed, comm, PETSC_ERR_USER_INPUT, "Factorization of Kt = K + s0 C + s0^2 M failed (s0 = %g rad/s): Kt is singular, i.e. s0 = 0 on an unheld model; change -krylov_s0 or check the clamp", (double)s0);
   PetscCall(PetscTime(&t1));
   kr->tFactor = t1 - t0;
+  PetscCall(PetscLogEventEnd(boltLog.krylovFactor, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

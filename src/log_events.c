@@ -27,6 +27,10 @@ PetscErrorCode BoltLogRegister(void)
   PetscCall(PetscLogEventRegister("ContactForces", classid, &boltLog.contactForces));
   PetscCall(PetscLogEventRegister("RomBasis", classid, &boltLog.basis));
   PetscCall(PetscLogEventRegister("RomProjection", classid, &boltLog.projection));
+  PetscCall(PetscLogEventRegister("KrylovFactor", classid, &boltLog.krylovFactor));
+  PetscCall(PetscLogEventRegister("KrylovSolve", classid, &boltLog.krylovSolve));
+  PetscCall(PetscLogEventRegister("KrylovOrthog", classid, &boltLog.krylovOrth));
+  PetscCall(PetscLogEventRegister("InterfaceReduce", classid, &boltLog.interfaceReduction));
   PetscCall(PetscLogStageRegister("Model set-up", &boltLog.stageSetUp));
   PetscCall(PetscLogStageRegister("Preload", &boltLog.stagePreload));
   PetscCall(PetscLogStageRegister("Transient", &boltLog.stageTransient));

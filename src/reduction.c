@@ -202,7 +202,9 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   rom->nJIM = o->nJIM;
   if (o->nCCM + o->nJIM > 0) {
     /* the contact inputs collapse onto the reduced interface: inputs E_I V_IR, load, preload */
+    PetscCall(PetscLogEventBegin(boltLog.interfaceReduction, 0, 0, 0, 0));
     PetscCall(BoltInterfaceBuild(contact, asmb->M, C, asmb->K, kry->s0, o->nCCM, o->nJIM, kry->deflationTol, &ir));
+    PetscCall(PetscLogEventEnd(boltLog.interfaceReduction, 0, 0, 0, 0));
     PetscCall(BVCreate(o->comm, &B));
     PetscCall(BVSetSizesFromVec(B, loads->load, ir->nIR + 2));
     PetscCall(BVSetFromOptions(B));
@@ -256,6 +258,9 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   rom->tSolve   = kry->tSolve;
   rom->tOrth    = kry->tOrth;
   rom->tOffline = t3 - t0;
+  PetscCall(PetscPrintf(o->comm, "ROM: rank kept per order:"));
+  for (PetscInt k = 0; k < rom->order; k++) PetscCall(PetscPrintf(o->comm, " %" PetscInt_FMT, rom->rankPerOrder[k]));
+  PetscCall(PetscPrintf(o->comm, "\n"));
   PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
   if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file, rom->fingerprint));
   PetscCall(BoltKrylovDestroy(&kry));
