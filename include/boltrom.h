@@ -119,6 +119,7 @@ typedef struct {
   /* state at the Gauss points (4 per element), set up by BoltContactSetSetUpState */
   PetscBool           augment;        /* augmented Lagrangian (false: pure penalty, lambda = 0) */
   PetscBool           warmStart;      /* keep the multipliers across outer iterations and steps */
+  PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
   PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
   PetscReal          *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
   PetscBool          *active, *activeOld, *activeOlder;

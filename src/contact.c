@@ -13,6 +13,7 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   c->mesh           = mesh;
   c->penaltyFactor  = 200.0;
   c->augment        = PETSC_TRUE;
+  c->activationGap  = 1e-7; /* 1 % of the penalty-only penetration under the preload tractions */
   c->warmStart      = PETSC_TRUE;
   c->matchTolerance = 1e-6;
   *cs               = c;
@@ -26,6 +27,7 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m]", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
   PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, c->warmStart, &c->warmStart, NULL));
+  PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m]", NULL, c->activationGap, &c->activationGap, NULL));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscOptionsEnd();
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
@@ -540,8 +542,16 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
       PetscReal t[3];
       PetscBool now;
       BoltContactTrialTraction(&c->lambda[3 * gp], &c->gap[3 * gp], &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], t);
-      if (c->active[gp] && c->augment) now = BoltContactIsActive(&c->lambda[3 * gp], &c->gpNormal[3 * gp]); /* lambda is the converged traction */
-      else now = BoltContactIsActive(t, &c->gpNormal[3 * gp]);
+      /* A band of width activationGap (or the traction eps_N activationGap) around zero keeps
+         points at the edge of the contact zone, whose gaps and tractions are at round-off
+         level, from chattering between the sets: a closed point opens when its traction is
+         tensile beyond the band, an open point closes when it penetrates beyond it. */
+      {
+        const PetscReal *g = &c->gap[3 * gp], *n = &c->gpNormal[3 * gp], *tr = (c->active[gp] && c->augment) ? &c->lambda[3 * gp] : t; /* lambda: the converged traction */
+        const PetscReal  band = c->epsN[pair] * c->activationGap;
+        if (c->active[gp]) now = (tr[0] * n[0] + tr[1] * n[1] + tr[2] * n[2]) < band ? PETSC_TRUE : PETSC_FALSE;
+        else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > c->activationGap ? PETSC_TRUE : PETSC_FALSE;
+      }
       c->activeOlder[gp] = c->activeOld[gp];
       c->activeOld[gp]   = c->active[gp];
       if (now != c->active[gp]) {

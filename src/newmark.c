@@ -302,7 +302,9 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
     for (PetscInt k = 0; k < ng; k++) p[k] = r[k] + (rrNew / rr) * p[k];
     rr = rrNew;
   }
-  PetscCall(PetscArraycpy(c->gap, r, ng));
+  /* the true gaps of the final displacement at every point: r holds them only at active points
+     (zeroed elsewhere), and an inactive point must be able to close again */
+  PetscCall(BoltGapsOf(nm, nm->q, c->gap));
   *ninner = inner;
   PetscFunctionReturn(0);
 }
