@@ -308,42 +308,19 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
   PetscFunctionReturn(0);
 }
 
-/* K + Kc with every contact element active (the tied joint). */
+/* K + Kc with every contact element active (the tied joint), from the contact state's K_c. */
 PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
 {
-  Mat          Kc;
-  PetscInt     m_, n_, M_, N_, ncoo = 576 * c->nelem;
-  PetscInt    *ci, *cj;
-  PetscScalar *cv;
-  PetscReal    Ke[576];
+  Mat Kc;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(boltLog.contactAssembly, 0, 0, 0, 0));
-  PetscCall(MatGetLocalSize(K, &m_, &n_));
-  PetscCall(MatGetSize(K, &M_, &N_));
-  PetscCall(MatCreate(PetscObjectComm((PetscObject)K), &Kc));
-  PetscCall(MatSetSizes(Kc, m_, n_, M_, N_));
-  PetscCall(MatSetType(Kc, MATAIJ));
-  PetscCall(PetscMalloc3(ncoo + 1, &ci, ncoo + 1, &cj, ncoo + 1, &cv));
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    const BoltContactElement *el = &c->elem[e];
-    PetscCall(QuadPairPenaltyStiffness(el->Xa, c->epsN[el->pair], c->epsT[el->pair], Ke));
-    for (PetscInt i = 0; i < 24; i++)
-      for (PetscInt j = 0; j < 24; j++) {
-        PetscInt k = 576 * e + 24 * i + j;
-        ci[k]      = el->dofs[i];
-        cj[k]      = el->dofs[j];
-        cv[k]      = Ke[24 * i + j];
-      }
-  }
-  PetscCall(MatSetPreallocationCOO(Kc, ncoo, ci, cj));
-  PetscCall(MatSetValuesCOO(Kc, cv, INSERT_VALUES));
-  PetscCall(PetscFree3(ci, cj, cv));
+  PetscCall(BoltContactSetResetState(c)); /* every point active */
+  PetscCall(BoltContactSetStiffness(c, &Kc));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Ktied));
   PetscCall(MatAXPY(*Ktied, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatSetOption(*Ktied, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(PetscObjectSetName((PetscObject)*Ktied, "K_tied"));
-  PetscCall(MatDestroy(&Kc));
   PetscCall(PetscLogEventEnd(boltLog.contactAssembly, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

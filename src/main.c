@@ -175,14 +175,12 @@ static PetscErrorCode BoltRun(void)
   if (opt.summary[0]) { /* fail now, not after the solve, if the summary cannot be written */
     char      dir[PETSC_MAX_PATH_LEN];
     char     *slash;
-    PetscBool ok = PETSC_TRUE;
     PetscCall(PetscStrncpy(dir, opt.summary, sizeof(dir)));
     PetscCall(PetscStrrchr(dir, '/', &slash));
     if (slash != dir) {
       slash[-1] = '\0';
       PetscCall(BoltMakeDir(comm, dir));
     }
-    (void)ok;
   }
   PetscCall(BoltMeshSetUp(mesh));
   PetscCall(BoltAssemblerSetUp(asmb));
@@ -190,6 +188,7 @@ static PetscErrorCode BoltRun(void)
   PetscCall(MatCreateVecs(asmb->K, &u, NULL));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
   PetscCall(BoltLoadSetSetUp(loads, u));
+  PetscCall(BoltContactSetSetUpState(contact, u)); /* one contact state serves tied, FOM and ROM */
   PetscCall(PetscLogStagePop());
   PetscCall(BoltMeshView(mesh, out));
   PetscCall(BoltAssemblerView(asmb, out));
@@ -264,7 +263,7 @@ static PetscErrorCode BoltRun(void)
   }
   if (opt.fom) {
     PetscReal force[BOLTROM_MAX_PAIRS];
-    PetscCall(BoltContactSetSetUpState(contact, u));
+    PetscCall(BoltContactSetResetState(contact));
     PetscCall(BoltFOMCreate(asmb, contact, loads, &fomOp));
     PetscCall(BoltNewmarkCreate(fomOp, &fomNm));
     PetscCall(BoltNewmarkSetFromOptions(fomNm));
@@ -289,8 +288,7 @@ static PetscErrorCode BoltRun(void)
   }
   if (opt.rom) {
     BoltReductionOptions ropt;
-    if (!opt.fom) PetscCall(BoltContactSetSetUpState(contact, u));
-    else PetscCall(BoltContactSetResetState(contact));
+    PetscCall(BoltContactSetResetState(contact));
     PetscCall(BoltReductionOptionsSetFromOptions(comm, &ropt));
     PetscCall(BoltROMBuild(&ropt, asmb, contact, loads, &rom));
     PetscCall(BoltROMOperatorCreate(rom, &romOp));
