@@ -55,6 +55,7 @@ typedef struct {
   PetscInt         *cellPart;        /* part index of each local cell */
   PetscInt          pStart, pEnd;
   PetscBT           pointGhost;      /* point owned by another rank (pStart-based) */
+  PetscInt         *pointOriginal;   /* number of each local point in the mesh as read (pStart-based) */
   PetscInt          partTag[BOLTROM_MAX_PARTS]; /* gmsh physical tag = label value */
   PetscInt          nverticesGlobal, ncellsGlobal, ndofsFree;
   PetscInt          edgeCut;         /* faces between cells of different ranks, after distribution */
@@ -72,6 +73,7 @@ PetscErrorCode BoltMeshCellCoordinates(BoltMesh *, PetscInt, PetscReal[24]);
 PetscErrorCode BoltMeshCellDofs(BoltMesh *, PetscInt, PetscInt[24]);
 PetscErrorCode BoltMeshCellVertices(BoltMesh *, PetscInt, PetscInt[8]);
 PetscErrorCode BoltMeshVertexDofs(BoltMesh *, PetscInt, PetscInt[3]);
+PetscErrorCode BoltMeshDofKeys(BoltMesh *, Vec, Vec *);
 PetscErrorCode BoltMeshVertexOwned(BoltMesh *, PetscInt, PetscBool *);
 PetscErrorCode BoltMeshGroupPoints(BoltMesh *, const char[], PetscBool, PetscInt *, PetscInt **);
 PetscErrorCode BoltMeshGroupVertices(BoltMesh *, const char[], PetscBool, PetscInt *, PetscInt **);

@@ -225,13 +225,13 @@ static PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt,
   symC = (PetscBool)(set && symC);
   PetscCall(MatIsSymmetricKnown(M, &set, &symM));
   symM = (PetscBool)(set && symM);
-  if (symK && symC && symM) PetscCall(MatSetOption(*Kt, MAT_SYMMETRIC, PETSC_TRUE)); /* lets -krylov_pc_type cholesky work */
+  if (symK && symC && symM) PetscCall(MatSetOption(*Kt, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(KSPCreate(comm, ksp));
   PetscCall(KSPSetOptionsPrefix(*ksp, "krylov_"));
   PetscCall(KSPSetOperators(*ksp, *Kt, *Kt));
   PetscCall(KSPSetType(*ksp, KSPPREONLY));
   PetscCall(KSPGetPC(*ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCSetType(pc, (symK && symC && symM) ? PCCHOLESKY : PCLU)); /* half the factor of LU */
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscCall(KSPSetFromOptions(*ksp));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &isfactor, PCLU, PCCHOLESKY, ""));

@@ -165,12 +165,19 @@ static PetscErrorCode BoltMeshDistribute(BoltMesh *m, DM *dm)
   IS               globalNumbering;
   PetscBool        metis;
   DM               dmDist = NULL;
+  PetscSF          sfMigration = NULL;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(m->comm, &size));
   PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
   m->edgeCut = 0;
-  if (size == 1) PetscFunctionReturn(0);
+  if (size == 1) {
+    PetscInt pStart, pEnd;
+    PetscCall(DMPlexGetChart(*dm, &pStart, &pEnd));
+    PetscCall(PetscMalloc1(pEnd - pStart + 1, &m->pointOriginal));
+    for (PetscInt p = pStart; p < pEnd; p++) m->pointOriginal[p - pStart] = p;
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscLogEventBegin(boltLog.meshDistribute, 0, 0, 0, 0));
   PetscCall(PetscStrcmp(m->partitioner, "metis", &metis));
   PetscCall(DMPlexCreatePartitionerGraph(*dm, 0, &nv, &xadj, &adj, &globalNumbering));
@@ -233,7 +240,22 @@ static PetscErrorCode BoltMeshDistribute(BoltMesh *m, DM *dm)
   PetscCall(DMPlexGetPartitioner(*dm, &part));
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSHELL));
   PetscCall(PetscPartitionerShellSetPartition(part, size, sizes, points));
-  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dmDist));
+  PetscCall(DMPlexDistribute(*dm, 0, &sfMigration, &dmDist));
+  {
+    /* the mesh was read on rank 0, so the root of every point is its number in the file's mesh */
+    PetscInt           pStart, pEnd, nleaves;
+    const PetscInt    *ilocal;
+    const PetscSFNode *iremote;
+    DM                 d = dmDist ? dmDist : *dm;
+    PetscCall(DMPlexGetChart(d, &pStart, &pEnd));
+    PetscCall(PetscMalloc1(pEnd - pStart + 1, &m->pointOriginal));
+    for (PetscInt p = pStart; p < pEnd; p++) m->pointOriginal[p - pStart] = p;
+    if (sfMigration) {
+      PetscCall(PetscSFGetGraph(sfMigration, NULL, &nleaves, &ilocal, &iremote));
+      for (PetscInt i = 0; i < nleaves; i++) m->pointOriginal[(ilocal ? ilocal[i] : i) - pStart] = iremote[i].index;
+    }
+    PetscCall(PetscSFDestroy(&sfMigration));
+  }
   if (dmDist) {
     PetscCall(DMDestroy(dm));
     *dm = dmDist;
@@ -546,6 +568,29 @@ PetscErrorCode BoltMeshVertexDofs(BoltMesh *m, PetscInt v, PetscInt idx[3])
   PetscFunctionReturn(0);
 }
 
+/* A key for every owned DOF that does not depend on the partition or the number of ranks:
+   3 x (the vertex's point number in the mesh as read) + component. Files that hold rows at
+   chosen DOFs (the ROM file) are indexed by it, so that any rank count can read them. */
+PetscErrorCode BoltMeshDofKeys(BoltMesh *m, Vec layout, Vec *keys)
+{
+  PetscInt idx[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(layout, keys));
+  PetscCall(VecSet(*keys, -1.0));
+  for (PetscInt v = m->vStart; v < m->vEnd; v++) {
+    PetscBool owned;
+    PetscCall(BoltMeshVertexOwned(m, v, &owned));
+    if (!owned) continue;
+    PetscCall(BoltMeshVertexDofs(m, v, idx));
+    for (PetscInt d = 0; d < 3; d++)
+      if (idx[d] >= 0) PetscCall(VecSetValue(*keys, idx[d], (PetscScalar)(3 * m->pointOriginal[v - m->pStart] + d), INSERT_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(*keys));
+  PetscCall(VecAssemblyEnd(*keys));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltMeshCellDofs(BoltMesh *m, PetscInt c, PetscInt idx[24])
 {
   PetscInt verts[8];
@@ -624,6 +669,7 @@ PetscErrorCode BoltMeshDestroy(BoltMesh **mesh)
   if (!*mesh) PetscFunctionReturn(0);
   PetscCall(DMDestroy(&(*mesh)->dm));
   PetscCall(PetscFree((*mesh)->cellPart));
+  PetscCall(PetscFree((*mesh)->pointOriginal));
   PetscCall(PetscBTDestroy(&(*mesh)->pointGhost));
   PetscCall(PetscFree(*mesh));
   PetscFunctionReturn(0);

@@ -105,7 +105,13 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscCall(KSPSetOptionsPrefix(nm->ksp, op->prefix));
   PetscCall(KSPSetType(nm->ksp, KSPPREONLY));
   PetscCall(KSPGetPC(nm->ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
+  {
+    /* K_eff is symmetric (the stick penalty is): Cholesky (LDL' in MUMPS) halves the factor */
+    PetscBool set, sym;
+    PetscCall(MatIsSymmetricKnown(op->K, &set, &sym));
+    if (set && sym) PetscCall(MatSetOption(nm->Keff, MAT_SYMMETRIC, PETSC_TRUE));
+    PetscCall(PCSetType(pc, set && sym ? PCCHOLESKY : PCLU));
+  }
   PetscCall(PCFactorSetMatSolverType(pc, op->solverType));
   PetscCall(KSPSetFromOptions(nm->ksp));
   PetscFunctionReturn(0);

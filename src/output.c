@@ -33,7 +33,7 @@ PetscErrorCode BoltMakeDir(MPI_Comm comm, const char dir[])
     if (ok) PetscCall(PetscTestDirectory(dir, 'w', &ok));
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_BOOL, 0, comm));
-  PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the output directory %s: choose a writable one with -output_dir", dir);
+  PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the directory %s: choose a writable one (-output_dir, -summary, -rom_file)", dir);
   PetscFunctionReturn(0);
 }
 

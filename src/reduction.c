@@ -22,6 +22,15 @@ PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOp
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   PetscOptionsEnd();
   PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
+  if (o->file[0]) { /* fail now, not after the offline phase, if the ROM file cannot be written */
+    char  dir[PETSC_MAX_PATH_LEN], *slash;
+    PetscCall(PetscStrncpy(dir, o->file, sizeof(dir)));
+    PetscCall(PetscStrrchr(dir, '/', &slash));
+    if (slash != dir) {
+      slash[-1] = '\0';
+      PetscCall(BoltMakeDir(comm, dir));
+    }
+  }
   PetscFunctionReturn(0);
 }
 

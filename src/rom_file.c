@@ -30,13 +30,11 @@ PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLo
 {
   BoltMesh          *m = asmb->mesh;
   unsigned long long h;
-  PetscMPIInt        size;
   char               part[64];
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(m->comm, &size));
   PetscCall(BoltFileHash(m->comm, m->filename, &h));
-  PetscCall(PetscSNPrintf(fp, len, "mesh %016llx; ranks %d; partitioner %s; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, size, m->partitioner, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
+  PetscCall(PetscSNPrintf(fp, len, "format 2; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
   for (PetscInt p = 0; p < m->nparts; p++) {
     const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
     PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g %.6g %.6g", m->partName[p], (double)mat->E, (double)mat->nu, (double)mat->rho));
@@ -208,7 +206,17 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
     PetscCall(PetscObjectSetName((PetscObject)d, "contact_dofs"));
     PetscCall(VecGetArray(w, &x));
     PetscCall(VecGetArray(d, &y));
-    for (PetscInt i = 0; i < ncd; i++) y[i] = (PetscScalar)cd[i];
+    {
+      Vec                keys;
+      const PetscScalar *k;
+      PetscInt           kstart;
+      PetscCall(BoltMeshDofKeys(rom->contact->mesh, loads->load, &keys));
+      PetscCall(VecGetOwnershipRange(keys, &kstart, NULL));
+      PetscCall(VecGetArrayRead(keys, &k));
+      for (PetscInt i = 0; i < ncd; i++) y[i] = k[cd[i] - kstart];
+      PetscCall(VecRestoreArrayRead(keys, &k));
+      PetscCall(VecDestroy(&keys));
+    }
     for (PetscInt j = 0; j < n; j++) {
       Vec                col;
       const PetscScalar *c;
@@ -395,16 +403,33 @@ PetscErrorCode BoltROMLoad(const char file[], const char fingerprint[], BoltRedu
     PetscCall(VecRestoreArray(w, &a));
     PetscCall(VecDestroy(&w));
     PetscCall(BoltReadArray(v, "Vc", ncd, n, Vc));
-    PetscCall(PetscCalloc1(c->nlocal * n + 1, &rom->Vc));
-    for (PetscInt i = 0; i < c->nlocal; i++) {
-      PetscInt lo = 0, hi = ncd, d = c->localGlobal[i];
-      while (lo < hi) {
-        PetscInt mid = (lo + hi) / 2;
-        if ((PetscInt)PetscRealPart(cdofs[mid]) < d) lo = mid + 1;
-        else hi = mid;
+    {
+      /* the file's rows are keyed by partition-independent DOF keys: find ours among them */
+      Vec                keys, ckeys;
+      const PetscScalar *k;
+      PetscInt          *fileKey, *perm;
+      PetscCall(PetscMalloc2(ncd + 1, &fileKey, ncd + 1, &perm));
+      for (PetscInt i = 0; i < ncd; i++) {
+        fileKey[i] = (PetscInt)PetscRealPart(cdofs[i]);
+        perm[i]    = i;
       }
-      PetscCheck(lo < ncd && (PetscInt)PetscRealPart(cdofs[lo]) == d, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT ": rebuild it", file, d);
-      for (PetscInt j = 0; j < n; j++) rom->Vc[i + c->nlocal * j] = Vc[lo * n + j];
+      PetscCall(PetscSortIntWithArray(ncd, fileKey, perm));
+      PetscCall(BoltMeshDofKeys(c->mesh, loads->load, &keys));
+      PetscCall(VecDuplicate(c->uc, &ckeys));
+      PetscCall(VecScatterBegin(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
+      PetscCall(VecScatterEnd(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
+      PetscCall(PetscCalloc1(c->nlocal * n + 1, &rom->Vc));
+      PetscCall(VecGetArrayRead(ckeys, &k));
+      for (PetscInt i = 0; i < c->nlocal; i++) {
+        PetscInt key = (PetscInt)PetscRealPart(k[i]), loc;
+        PetscCall(PetscFindInt(key, ncd, fileKey, &loc));
+        PetscCheck(loc >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT " (key %" PetscInt_FMT "): rebuild it with -rom_rebuild", file, c->localGlobal[i], key);
+        for (PetscInt j = 0; j < n; j++) rom->Vc[i + c->nlocal * j] = Vc[perm[loc] * n + j];
+      }
+      PetscCall(VecRestoreArrayRead(ckeys, &k));
+      PetscCall(VecDestroy(&ckeys));
+      PetscCall(VecDestroy(&keys));
+      PetscCall(PetscFree2(fileKey, perm));
     }
     PetscCall(PetscFree2(cdofs, Vc));
   }
