@@ -120,6 +120,7 @@ typedef struct {
   BoltContactElement *elem;
   /* state at the Gauss points (4 per element), set up by BoltContactSetSetUpState */
   PetscBool           augment;        /* augmented Lagrangian (false: pure penalty, lambda = 0) */
+  PetscBool           augmentOption;  /* -contact_augment as given; each model may choose its own law */
   PetscBool           warmStart;      /* keep the multipliers across outer iterations and steps */
   PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
   PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
@@ -194,6 +195,7 @@ struct BoltOperator_s {
   MPI_Comm         comm;     /* for messages and errors (the ROM's matrices live on every rank) */
   MatSolverType    solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
   PetscBool        exactConstraints; /* every contact gap can be closed (FOM, ROM without interface reduction) */
+  PetscBool        augment;          /* contact law of this model: augmented Lagrangian, or penalty alone */
   char             prefix[16]; /* options prefix of its solver: fom_ or rom_ */
   Mat              M, C, K;
   Vec              load, preload; /* external load pattern and preload, in its coordinates */
@@ -271,6 +273,7 @@ typedef struct {
   PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];
   PetscReal       s0, tOffline, tInputs, tBasis, tProject, tFactor, tSolve, tOrth, tInterface;
   PetscBool       fromFile;
+  PetscBool       augment;       /* contact law of the reduced dual loop */
   PetscReal       orthogonality; /* max |V'V - I|, or -1 if not measured */
   char            fingerprint[2048];
 } BoltROM;
@@ -283,6 +286,7 @@ typedef struct {
   PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
   PetscBool  checkOrthogonality;
+  PetscBool  augment;        /* the ROM's contact law: augmented Lagrangian, or penalty alone */
 } BoltReductionOptions;
 
 PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);

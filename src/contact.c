@@ -26,6 +26,7 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m]", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
+  c->augmentOption = c->augment;
   PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, c->warmStart, &c->warmStart, NULL));
   PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m]", NULL, c->activationGap, &c->activationGap, NULL));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));

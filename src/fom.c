@@ -53,6 +53,7 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   op->comm       = asmb->mesh->comm;
   op->solverType = MATSOLVERMUMPS;
   op->exactConstraints = PETSC_TRUE;
+  op->augment          = contact->augmentOption;
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
   op->M = asmb->M;
   op->K = asmb->K;

@@ -457,6 +457,7 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONReal(&j, "offline_orth_s", rom->tOrth));
       PetscCall(BoltJSONReal(&j, "offline_interface_s", rom->tInterface));
       PetscCall(BoltJSONReal(&j, "offline_projection_s", rom->tProject));
+      PetscCall(BoltJSONString(&j, "contact_law", rom->augment ? "augmented" : "penalty"));
       PetscCall(BoltJSONInt(&j, "steps", romNm->nsteps));
       PetscCall(BoltJSONReal(&j, "online_s", romNm->tOnline));
       PetscCall(BoltJSONReal(&j, "contact_stiffness_s", romNm->tContactStiffness));

@@ -363,6 +363,7 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
   PetscInt nout, nin;
 
   PetscFunctionBeginUser;
+  nm->op->contact->augment = nm->op->augment; /* the contact set serves FOM and ROM: this model's law */
   PetscCall(BoltNewmarkSetK0(nm, PETSC_FALSE));
   nm->step = 0;
   PetscCall(VecCopy(nm->op->preload, nm->rhs));

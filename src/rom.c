@@ -116,6 +116,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   op->comm       = rom->comm;
   op->solverType = MATSOLVERPETSC;
   op->exactConstraints = (rom->nCCM + rom->nJIM) ? PETSC_FALSE : PETSC_TRUE;
+  op->augment = rom->augment; /* -rom_contact_augment */
   PetscCall(PetscStrncpy(op->prefix, "rom_", sizeof(op->prefix)));
   op->M       = rom->Mr;
   op->C       = rom->Cr;

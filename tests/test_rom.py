@@ -49,14 +49,15 @@ def test_rom_with_interface_reduction(joint_small, tmp_path):
     """CCM + JIM: the interface basis is orthonormal, the ROM is small, and it follows the FOM."""
     mesh, _ = joint_small
     s = run_summary(["-mesh", mesh, "-fom"] + ROM + ["-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "2",
-                     "-contact_activation_gap", "1e-5", "-rom_check_orthogonality", "-ts_dt", "1e-4", "-ts_end", "0.01",
-                     "-output", "false"], tmp_path)
+                     "-rom_check_orthogonality", "-ts_dt", "1e-4", "-ts_end", "0.01", "-output", "false"], tmp_path)
     r = s["rom"]
     print("ROM (CCM+JIM 100+100, order 2) against FOM:", s["errors"]["load_point"], "dim", r["dim"])
     assert 0 < r["n_ccm"] <= 100 and 0 < r["n_jim"] <= 100
     assert r["inputs"] == r["n_ccm"] + r["n_jim"] + 2 and r["dim"] <= 2 * r["inputs"]
     assert r["orthogonality"] < 1e-12
-    assert s["errors"]["load_point"]["e_L2"] < 0.15
+    # fewer reduced DOFs than contact constraints: the reduced dual loop uses the penalty law
+    assert r["contact_law"] == "penalty" and r["failures"] == 0
+    assert s["errors"]["load_point"]["e_L2"] < 0.10  # measured 0.056: the interface basis, not the loop (README)
 
 
 def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path):
