@@ -8,6 +8,7 @@ export PETSC_DIR SLEPC_DIR
 PYTHON   ?= /usr/bin/python3
 NP       ?= 2
 LEVEL    ?= 1
+LEVELS   ?= 1
 export OMPI_ALLOW_RUN_AS_ROOT = 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM = 1
 export OPENBLAS_NUM_THREADS = 1
@@ -75,9 +76,9 @@ run: deps all $(MESH_LEVEL1)
 	  -summary output/paper-step/summary.json
 	$(PYTHON) python/plot_history.py output/paper-step/step.png output/paper-step/paper-step.h5
 
-# FOM against ROM over reduction settings on the paper mesh; FOM stress sweep.
+# FOM against ROM (same run) per mesh level, and a sweep of ROM settings; FOM stress sweep.
 bench: deps all
-	$(PYTHON) scripts/bench-rom --np $(NP) --level $(LEVEL)
+	$(PYTHON) scripts/bench-rom --np $(NP) --levels $(LEVELS)
 
 stress: deps all
 	$(PYTHON) scripts/stress-fom --np $(NP)
