@@ -203,6 +203,7 @@ PetscErrorCode BoltInterfaceBuild(BoltContactSet *c, Mat M, Mat C, Mat K, PetscR
   PetscCall(PetscFree(idx));
   PetscCall(ISComplement(ir->isI, rstart, rend, &ir->isG));
   PetscCall(ISGetSize(ir->isI, &ir->nI));
+  PetscCheck(nCCM + nJIM <= ir->nI, ir->comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm (%" PetscInt_FMT ") + -rom_n_jim (%" PetscInt_FMT ") exceed the %" PetscInt_FMT " DOFs of the contact interface: choose at most %" PetscInt_FMT " in total", nCCM, nJIM, ir->nI, ir->nI);
   /* the top and bottom halves of a 2 n_I Arnoldi vector, locally [top | bottom] */
   {
     PetscInt s;

@@ -510,9 +510,36 @@ int main(int argc, char **argv)
   PetscBool      traceback = PETSC_FALSE;
   PetscMPIInt    rank, size;
 
-  PetscCall(SlepcInitialize(&argc, &argv, NULL, help));
+  /* Scene files are read after initialisation, under the one-line error handler, so that a
+     malformed file gives a message naming it rather than PETSc's trace from inside its start-up;
+     the command line is then inserted again so that it still overrides the files. */
+  char **args = (char **)malloc(sizeof(char *) * (argc + 1)), *scenes[16];
+  int    nargs = 0, nscenes = 0;
+  for (int i = 0; i < argc; i++) {
+    if (!strcmp(argv[i], "-options_file") && i + 1 < argc && nscenes < 16) scenes[nscenes++] = argv[++i];
+    else args[nargs++] = argv[i];
+  }
+  args[nargs] = NULL;
+  PetscCall(SlepcInitialize(&nargs, &args, NULL, help));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  for (int k = 0; k < nscenes; k++) {
+    PetscOptions check;
+    PetscCall(PetscOptionsCreate(&check));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = PetscOptionsInsertFile(PETSC_COMM_WORLD, check, scenes[k], PETSC_TRUE);
+    PetscCall(PetscPopErrorHandler());
+    PetscCall(PetscOptionsDestroy(&check));
+    if (ierr) {
+      if (rank == 0) fprintf(stderr, "boltrom: error: Cannot read the scene file %s: it is missing or not valid YAML (one 'option: value' per line; quote values with commas)\n", scenes[k]);
+      PetscOptionsClear(NULL);
+      SlepcFinalize();
+      free(args);
+      return 1;
+    }
+    PetscCall(PetscOptionsInsertFile(PETSC_COMM_WORLD, NULL, scenes[k], PETSC_TRUE));
+  }
+  if (nscenes) PetscCall(PetscOptionsInsert(NULL, &nargs, &args, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-traceback", &traceback, NULL));
   /* Errors come back as one line naming the problem; -traceback shows PETSc's full trace. */
   if (!traceback) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
@@ -528,8 +555,10 @@ int main(int argc, char **argv)
     if (size > 1) MPI_Abort(PETSC_COMM_WORLD, (int)ierr);
     PetscOptionsClear(NULL); /* no -options_left report on an error */
     SlepcFinalize();
+    free(args);
     return (int)ierr;
   }
   PetscCall(SlepcFinalize());
+  free(args);
   return 0;
 }

@@ -446,7 +446,19 @@ PetscErrorCode BoltMeshSetUp(BoltMesh *m)
   PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_mark_vertices", &has));
   if (!has) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "1"));
   PetscCall(PetscLogEventBegin(boltLog.meshRead, 0, 0, 0, 0));
-  PetscCall(DMPlexCreateFromFile(m->comm, m->filename, "boltrom", PETSC_TRUE, &dm));
+  {
+    /* a file that exists but cannot be read (truncated, not MSH): say which, not just where */
+    PetscErrorCode ierr;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = DMPlexCreateFromFile(m->comm, m->filename, "boltrom", PETSC_TRUE, &dm);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) {
+      const char *text;
+      char       *specific = NULL;
+      PetscErrorMessage(ierr, &text, &specific);
+      SETERRQ(m->comm, PETSC_ERR_FILE_UNEXPECTED, "Cannot read the mesh %s (%s): is it a complete gmsh MSH 4.1 file? Regenerate it (scripts/mesh-joint) or export it again from gmsh", m->filename, specific && specific[0] ? specific : text);
+    }
+  }
   PetscCall(PetscLogEventEnd(boltLog.meshRead, 0, 0, 0, 0));
   PetscCall(PetscObjectSetName((PetscObject)dm, "boltrom"));
   {

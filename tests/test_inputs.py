@@ -90,3 +90,44 @@ def test_help_lists_options():
                 "-preload_force", "-probe_group", "-output_dir", "-summary", "-modal_nev", "-static_ksp_type",
                 "-modal_eps_nev"):
         assert opt in proc.stdout, opt
+
+
+def test_truncated_mesh_file(beam, tmp_path):
+    cut = tmp_path / "cut.msh"
+    data = open(beam, "rb").read()
+    cut.write_bytes(data[: len(data) // 2])
+    expect_error(["-mesh", cut, "-load_group", "tip", "-modal_nev", "0"], tmp_path, "Cannot read the mesh", "cut.msh", "MSH")
+
+
+def test_malformed_scene_file(beam, tmp_path):
+    scene = tmp_path / "scene.yaml"
+    scene.write_text(f"mesh: {beam}\nload_group: [tip\nmodal_nev: 1\n")
+    expect_error(["-options_file", scene], tmp_path, "scene.yaml")
+
+
+@pytest.mark.parametrize("args, words", [
+    (["-ts_dt", "0"], ["-ts_dt", "> 0"]),
+    (["-ts_dt", "-1e-4"], ["-ts_dt", "> 0"]),
+    (["-ts_dt", "1e-3", "-ts_end", "1e-4"], ["-ts_end", "-ts_dt"]),
+])
+def test_bad_time_step(joint_small, tmp_path, args, words):
+    mesh, _ = joint_small
+    expect_error(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-fom"] + args, tmp_path, *words)
+
+
+def test_reduction_larger_than_interface(joint_small, tmp_path):
+    mesh, info = joint_small
+    expect_error(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-rom", "-rom_n_ccm", "100000"], tmp_path,
+                 "-rom_n_ccm", "interface")
+
+
+def test_rom_file_from_another_mesh(joint_small, beam, tmp_path):
+    """A ROM file built on one mesh is refused (or rebuilt) on another, with the reason."""
+    mesh, _ = joint_small
+    rom_file = tmp_path / "a.rom.h5"
+    common = ["-static", "false", "-modal_nev", "0", "-rom", "-rom_n_ccm", "0", "-rom_n_jim", "0", "-ts_end", "5e-4",
+              "-rom_file", rom_file, "-output", "false"]
+    run_boltrom(["-mesh", mesh] + common)
+    other = tmp_path / "other.msh"
+    make_mesh("joint", other, 0.6)
+    expect_error(["-mesh", other] + common + ["-rom_rebuild", "false"], tmp_path, "does not match", "mesh")
