@@ -9,9 +9,34 @@ typedef struct {
   char      outputName[BOLTROM_NAME_LEN];
   char      summary[PETSC_MAX_PATH_LEN];
   PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom, rom, romCheckS0;
+  char      exportDir[PETSC_MAX_PATH_LEN]; /* tied K and M, full and reduced, for petsc4py */
   PetscInt  verifyField; /* 0 smooth, 1 linear */
   PetscInt  nev;
 } BoltRunOptions;
+
+/* A matrix in PETSc binary format, written under a temporary name and renamed. Sequential
+   matrices (the ROM's, the same on every rank) are written by rank 0. */
+static PetscErrorCode BoltExportMatrix(Mat A, const char dir[], const char name[])
+{
+  char        tmp[PETSC_MAX_PATH_LEN], path[PETSC_MAX_PATH_LEN];
+  PetscViewer v;
+  PetscMPIInt size, rank;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)A);
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  if (size == 1 && rank != 0) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", dir, name));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp", path));
+  PetscCall(PetscViewerBinaryOpen(comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerBinarySetSkipInfo(v, PETSC_TRUE));
+  PetscCall(MatView(A, v));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) PetscCheck(rename(tmp, path) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp, path);
+  PetscFunctionReturn(0);
+}
 
 static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
 {
@@ -27,6 +52,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   o->fom          = PETSC_FALSE;
   o->rom          = PETSC_FALSE;
   o->romCheckS0   = PETSC_FALSE;
+  o->exportDir[0] = '\0';
   o->verifyField  = 0;
   PetscOptionsBegin(comm, NULL, "Run", "boltrom");
   PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
@@ -36,6 +62,7 @@ static PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions
   PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
   PetscCall(PetscOptionsBool("-fom", "Run the full-order model with contact: static preload, then the Newmark transient", NULL, o->fom, &o->fom, NULL));
   PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));
+  PetscCall(PetscOptionsString("-export_matrices", "Folder for the tied stiffness and the mass matrix, full (K_tied.petsc, M.petsc) and, with -rom, reduced (rom_K_tied.petsc, rom_M.petsc), in PETSc binary format (python/compare_eigen.py reads them)", NULL, o->exportDir, o->exportDir, sizeof(o->exportDir), NULL));
   PetscCall(PetscOptionsBool("-rom_check_s0", "Check the ROM against the FOM at s = s0 with every contact point active (exact for an order-1 ROM without interface reduction)", NULL, o->romCheckS0, &o->romCheckS0, NULL));
   PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
   PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));
@@ -217,6 +244,11 @@ static PetscErrorCode BoltRun(void)
     PetscCall(PetscLogStagePop());
     PetscCall(PetscPrintf(comm, "Static (tied): probe u_%c at '%s' = %.10e m under %g N (%.2f s)\n", "xyz"[loads->probeComponent], loads->probeGroup, (double)probe, (double)loads->loadForce, (double)tStatic));
   }
+  if (opt.exportDir[0]) {
+    PetscCall(BoltMakeDir(comm, opt.exportDir));
+    PetscCall(BoltExportMatrix(Ktied, opt.exportDir, "K_tied.petsc"));
+    PetscCall(BoltExportMatrix(asmb->M, opt.exportDir, "M.petsc"));
+  }
   if (opt.nev > 0) {
     PetscLogDouble ts, te;
     PetscCall(PetscLogStagePush(boltLog.stageModal));
@@ -293,6 +325,16 @@ static PetscErrorCode BoltRun(void)
     PetscCall(BoltROMBuild(&ropt, asmb, contact, loads, &rom));
     PetscCall(BoltROMOperatorCreate(rom, &romOp));
     if (opt.romCheckS0) PetscCall(BoltROMCheckAtS0(rom, romOp, asmb, contact, loads, &romCheckError));
+    if (opt.exportDir[0]) { /* the reduced tied joint: K_r + V' K_c V with every contact point active */
+      Mat Kcr, Kt;
+      PetscCall(BoltContactSetResetState(contact));
+      PetscCall(romOp->contactStiffness(romOp, &Kcr));
+      PetscCall(MatDuplicate(rom->Kr, MAT_COPY_VALUES, &Kt));
+      PetscCall(MatAXPY(Kt, 1.0, Kcr, SAME_NONZERO_PATTERN));
+      PetscCall(BoltExportMatrix(Kt, opt.exportDir, "rom_K_tied.petsc"));
+      PetscCall(BoltExportMatrix(rom->Mr, opt.exportDir, "rom_M.petsc"));
+      PetscCall(MatDestroy(&Kt));
+    }
     PetscCall(BoltNewmarkCreate(romOp, &romNm));
     PetscCall(BoltNewmarkSetFromOptions(romNm));
     romNm->preloadTarget = loads->hasPreload ? loads->preloadForce : 0;

@@ -115,3 +115,23 @@ def test_rom_file_built_on_2_ranks_serves_1_rank(joint_small, tmp_path):
         with h5py.File(d / "joint.h5") as f:
             hist[ranks] = f["/rom/probe"][...]
     assert np.abs(hist[1] - hist[2]).max() <= 1e-8 * np.abs(hist[2]).max()
+
+
+def test_eigenfrequencies_full_and_reduced(joint_small, tmp_path):
+    """python/compare_eigen.py (petsc4py/slepc4py) on the exported tied matrices: its FOM
+    frequencies are boltrom's own SLEPc ones, and the ROM's are Rayleigh-Ritz values of the same
+    pencil, so each is an upper bound of the FOM's of the same index, and the first is close."""
+    from conftest import PYTHON, run_boltrom
+    mesh, _ = joint_small
+    d = tmp_path / "mats"
+    proc = run_boltrom(["-mesh", mesh, "-modal_nev", "5", "-rom", "-rom_n_ccm", "100", "-rom_n_jim", "100", "-ts_end", "5e-4",
+                        "-export_matrices", d, "-output", "false"])
+    line = [l for l in proc.stdout.splitlines() if l.startswith("Eigenfrequencies (tied)")][0]
+    own = np.array([float(x) for x in line.split(":")[1].split("(")[0].split()])
+    out = subprocess.run([PYTHON, str(ROOT / "python" / "compare_eigen.py"), str(d), "5"], env=ENV, capture_output=True, text=True, check=True)
+    rows = [l.split("|") for l in out.stdout.splitlines()[2:]]
+    fom = np.array([float(r[2]) for r in rows])
+    rom = np.array([float(r[3]) for r in rows])
+    assert np.allclose(fom, own, rtol=1e-5)
+    assert np.all(rom >= fom * (1 - 1e-9))
+    assert rom[0] <= 1.02 * fom[0]
