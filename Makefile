@@ -17,7 +17,7 @@ SLEPC_VARS := $(wildcard $(SLEPC_DIR)/lib/slepc/conf/slepc_variables)
 ifeq ($(SLEPC_VARS),)
 # Nothing installed yet: install the stack, then run the same goal again.
 .DEFAULT_GOAL := all
-all bin/boltrom run test bench mesh tests-c verify stress:
+all bin/boltrom run test bench mesh tests-c verify stress paper:
 	bash scripts/install-deps
 	$(MAKE) $@
 else
@@ -80,6 +80,10 @@ run: deps all $(MESH_LEVEL1)
 bench: deps all
 	$(PYTHON) scripts/bench-rom --np $(NP) --levels $(LEVELS)
 
+# The paper's figures 3-6, table 3 and the eigenfrequency table, into output/paper/.
+paper: deps all
+	$(PYTHON) scripts/reproduce-paper --np $(NP)
+
 stress: deps all
 	$(PYTHON) scripts/stress-fom --np $(NP)
 
@@ -93,5 +97,5 @@ test: deps all
 clean:
 	rm -rf build bin
 
-.PHONY: all deps run test mesh clean tests-c verify bench stress
+.PHONY: all deps run test mesh clean tests-c verify bench stress paper
 endif
