@@ -286,7 +286,7 @@ typedef struct {
   PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
   PetscBool  checkOrthogonality;
-  PetscBool  augment;        /* the ROM's contact law: augmented Lagrangian, or penalty alone */
+  PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */
 } BoltReductionOptions;
 
 PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);
@@ -341,5 +341,6 @@ PetscErrorCode BoltJSONString(BoltJSON *, const char[], const char[]);
 PetscErrorCode BoltJSONRealArray(BoltJSON *, const char[], PetscInt, const PetscReal[]);
 PetscErrorCode BoltJSONClose(BoltJSON *);
 PetscErrorCode BoltMakeDir(MPI_Comm, const char[]);
+PetscErrorCode BoltMakeParentDir(MPI_Comm, const char[]);
 
 #endif

@@ -3,6 +3,7 @@ static const char help[] = "boltrom: vibration of bolted joints with contact, fu
                            "This stage builds the model, solves the tied joint statically and finds its eigenfrequencies.\n\n";
 
 #include "boltrom.h"
+#include "boltrom_krylov.h"
 
 typedef struct {
   char      outputDir[PETSC_MAX_PATH_LEN];
@@ -191,6 +192,21 @@ static PetscErrorCode BoltRun(void)
       PetscCall(EPSSetOptionsPrefix(eps, "modal_"));
       PetscCall(EPSSetFromOptions(eps));
       PetscCall(EPSDestroy(&eps));
+      { /* time integration, Krylov basis and reduction options (their objects need no model) */
+        BoltOperator         stub = {0};
+        BoltNewmark         *nm;
+        BoltKrylov          *kry;
+        BoltReductionOptions ropt;
+        stub.comm = comm;
+        stub.name = "FOM";
+        PetscCall(BoltNewmarkCreate(&stub, &nm));
+        PetscCall(BoltNewmarkSetFromOptions(nm));
+        PetscCall(BoltNewmarkDestroy(&nm));
+        PetscCall(BoltKrylovCreate(comm, &kry));
+        PetscCall(BoltKrylovSetFromOptions(kry));
+        PetscCall(BoltKrylovDestroy(&kry));
+        PetscCall(BoltReductionOptionsSetFromOptions(comm, &ropt));
+      }
       PetscCall(BoltLoadSetDestroy(&loads));
       PetscCall(BoltContactSetDestroy(&contact));
       PetscCall(BoltAssemblerDestroy(&asmb));
@@ -199,16 +215,7 @@ static PetscErrorCode BoltRun(void)
       PetscFunctionReturn(0);
     }
   }
-  if (opt.summary[0]) { /* fail now, not after the solve, if the summary cannot be written */
-    char      dir[PETSC_MAX_PATH_LEN];
-    char     *slash;
-    PetscCall(PetscStrncpy(dir, opt.summary, sizeof(dir)));
-    PetscCall(PetscStrrchr(dir, '/', &slash));
-    if (slash != dir) {
-      slash[-1] = '\0';
-      PetscCall(BoltMakeDir(comm, dir));
-    }
-  }
+  if (opt.summary[0]) PetscCall(BoltMakeParentDir(comm, opt.summary)); /* fail now, not after the solve */
   PetscCall(BoltMeshSetUp(mesh));
   PetscCall(BoltAssemblerSetUp(asmb));
   PetscCall(BoltContactSetSetUp(contact));
@@ -566,12 +573,9 @@ int main(int argc, char **argv)
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   for (int k = 0; k < nscenes; k++) {
-    PetscOptions check;
-    PetscCall(PetscOptionsCreate(&check));
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    ierr = PetscOptionsInsertFile(PETSC_COMM_WORLD, check, scenes[k], PETSC_TRUE);
+    ierr = PetscOptionsInsertFile(PETSC_COMM_WORLD, NULL, scenes[k], PETSC_TRUE);
     PetscCall(PetscPopErrorHandler());
-    PetscCall(PetscOptionsDestroy(&check));
     if (ierr) {
       if (rank == 0) fprintf(stderr, "boltrom: error: Cannot read the scene file %s: it is missing or not valid YAML (one 'option: value' per line; quote values with commas)\n", scenes[k]);
       PetscOptionsClear(NULL);
@@ -579,7 +583,6 @@ int main(int argc, char **argv)
       free(args);
       return 1;
     }
-    PetscCall(PetscOptionsInsertFile(PETSC_COMM_WORLD, NULL, scenes[k], PETSC_TRUE));
   }
   if (nscenes) PetscCall(PetscOptionsInsert(NULL, &nargs, &args, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-traceback", &traceback, NULL));

@@ -37,6 +37,22 @@ PetscErrorCode BoltMakeDir(MPI_Comm comm, const char dir[])
   PetscFunctionReturn(0);
 }
 
+/* Creates the folder of a file path (nothing for a bare file name), so that a file that
+   cannot be written is reported before the work that produces it. */
+PetscErrorCode BoltMakeParentDir(MPI_Comm comm, const char path[])
+{
+  char  dir[PETSC_MAX_PATH_LEN], *slash;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(dir, path, sizeof(dir)));
+  PetscCall(PetscStrrchr(dir, '/', &slash));
+  if (slash != dir) {
+    slash[-1] = '\0';
+    PetscCall(BoltMakeDir(comm, dir));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Global vertex number of a local vertex (ghosts are encoded -(g+1) by DMPlex). */
 static inline PetscInt BoltGlobalNumber(const PetscInt *num, PetscInt i)
 {

@@ -20,27 +20,11 @@ PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOp
   PetscCall(PetscOptionsBool("-rom_check_orthogonality", "Measure max |V'V - I| of the basis (costs n^2 N)", NULL, o->checkOrthogonality, &o->checkOrthogonality, NULL));
   PetscCall(PetscOptionsBool("-rom_rebuild", "Rebuild a ROM file that does not match the scene (false: refuse)", NULL, o->rebuild, &o->rebuild, NULL));
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
-  {
-    /* With interface reduction the ROM has fewer DOFs than contact constraints: multipliers that
-       close every active gap are not unique (their signs, which decide the active set, are
-       arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps
-       the reduced contact problem well posed, so it is the default there. */
-    PetscBool augment = PETSC_TRUE;
-    PetscCall(PetscOptionsGetBool(NULL, NULL, "-contact_augment", &augment, NULL));
-    o->augment = (PetscBool)(augment && o->nCCM + o->nJIM == 0);
-  }
-  PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, NULL));
+  o->augment = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
   PetscOptionsEnd();
   PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
-  if (o->file[0]) { /* fail now, not after the offline phase, if the ROM file cannot be written */
-    char  dir[PETSC_MAX_PATH_LEN], *slash;
-    PetscCall(PetscStrncpy(dir, o->file, sizeof(dir)));
-    PetscCall(PetscStrrchr(dir, '/', &slash));
-    if (slash != dir) {
-      slash[-1] = '\0';
-      PetscCall(BoltMakeDir(comm, dir));
-    }
-  }
+  if (o->file[0]) PetscCall(BoltMakeParentDir(comm, o->file)); /* fail now, not after the offline phase */
   PetscFunctionReturn(0);
 }
 
@@ -192,11 +176,14 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(PetscNew(&rom));
   rom->comm    = o->comm;
   rom->contact = contact;
-  rom->augment = o->augment;
+  /* With interface reduction the ROM has fewer DOFs than contact constraints: multipliers that
+     close every active gap are not unique (their signs, which decide the active set, are
+     arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps
+     the reduced contact problem well posed, so it is the default there. */
+  rom->augment = o->augmentSet ? o->augment : (PetscBool)(contact->augmentOption && o->nCCM + o->nJIM == 0);
   PetscCall(BoltKrylovCreate(o->comm, &kry));
   PetscCall(BoltKrylovSetFromOptions(kry));
   PetscCall(BoltROMFingerprint(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, rom->fingerprint, sizeof(rom->fingerprint)));
-
   if (o->file[0]) {
     PetscBool exists, matched;
     char      why[256];
@@ -207,7 +194,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
       if (matched) {
         PetscCall(PetscTime(&t3));
         loaded->tOffline = t3 - t0;
-        loaded->augment  = o->augment;
+        loaded->augment  = rom->augment;
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
         PetscCall(BoltKrylovDestroy(&kry));
@@ -287,7 +274,6 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
   if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file, rom->fingerprint));
   PetscCall(BoltKrylovDestroy(&kry));
-  PetscCall(BoltInterfaceDestroy(&ir));
   PetscCall(BVDestroy(&B));
   PetscCall(BVDestroy(&V));
   PetscCall(MatDestroy(&C));

@@ -34,7 +34,7 @@ PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLo
 
   PetscFunctionBeginUser;
   PetscCall(BoltFileHash(m->comm, m->filename, &h));
-  PetscCall(PetscSNPrintf(fp, len, "format 2; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
+  PetscCall(PetscSNPrintf(fp, len, "format 3; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
   for (PetscInt p = 0; p < m->nparts; p++) {
     const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
     PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g %.6g %.6g", m->partName[p], (double)mat->E, (double)mat->nu, (double)mat->rho));
@@ -203,7 +203,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
     PetscCall(VecSetBlockSize(w, n));
     PetscCall(PetscObjectSetName((PetscObject)w, "Vc"));
     PetscCall(VecCreateMPI(comm, ncd, PETSC_DETERMINE, &d));
-    PetscCall(PetscObjectSetName((PetscObject)d, "contact_dofs"));
+    PetscCall(PetscObjectSetName((PetscObject)d, "contact_dof_keys"));
     PetscCall(VecGetArray(w, &x));
     PetscCall(VecGetArray(d, &y));
     {
@@ -394,7 +394,7 @@ PetscErrorCode BoltROMLoad(const char file[], const char fingerprint[], BoltRedu
   {
     Vec w;
     PetscCall(VecCreate(PETSC_COMM_SELF, &w));
-    PetscCall(PetscObjectSetName((PetscObject)w, "contact_dofs"));
+    PetscCall(PetscObjectSetName((PetscObject)w, "contact_dof_keys"));
     PetscCall(VecLoad(w, v));
     PetscCall(VecGetSize(w, &ncd));
     PetscCall(PetscMalloc2(ncd + 1, &cdofs, ncd * n + 1, &Vc));
