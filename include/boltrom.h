@@ -101,6 +101,7 @@ PetscErrorCode BoltAssemblerDestroy(BoltAssembler **);
 /* A contact element: two matching quad faces, a and b. Only the owner of face a keeps it. */
 typedef struct {
   PetscInt  pair;
+  PetscInt  key;      /* face a's number in the mesh as read: names the element on any ranks */
   PetscReal Xa[12];
   PetscInt  dofs[24]; /* global DOFs of [a nodes, b nodes], -1 where clamped */
 } BoltContactElement;
@@ -141,6 +142,7 @@ typedef struct {
 PetscErrorCode BoltContactSetCreate(BoltMesh *, BoltContactSet **);
 PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *);
 PetscErrorCode BoltContactSetSetUp(BoltContactSet *);
+PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *);
 PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *, Mat, Mat *);
 PetscErrorCode BoltContactSetSetUpState(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetResetState(BoltContactSet *);
@@ -196,6 +198,7 @@ struct BoltOperator_s {
   MatSolverType    solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
   PetscBool        exactConstraints; /* every contact gap can be closed (FOM, ROM without interface reduction) */
   PetscBool        augment;          /* contact law of this model: augmented Lagrangian, or penalty alone */
+  PetscBool        meshLayout;       /* its vectors are laid out as the mesh's DOFs (FOM), else reduced and replicated */
   char             prefix[16]; /* options prefix of its solver: fom_ or rom_ */
   Mat              M, C, K;
   Vec              load, preload; /* external load pattern and preload, in its coordinates */
@@ -240,6 +243,12 @@ typedef struct {
   Vec             qp;      /* displacement of a search direction (CG) */
   Vec             FcLambda; /* contact forces of the current multipliers (CG) */
   PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
+  /* checkpoints (checkpoint.c): <checkpointBase>-fom.ckpt.h5 / -rom.ckpt.h5 */
+  PetscInt        checkpointEvery;  /* write one every this many steps (0: never) */
+  char            checkpointBase[PETSC_MAX_PATH_LEN];
+  PetscBool       restart;          /* continue from the checkpoint instead of step 0 */
+  PetscReal       tOnlineBefore;    /* online time spent before the restart */
+  PetscReal       tCheckpoint;      /* time spent writing checkpoints (not online work) */
 } BoltNewmark;
 
 PetscErrorCode BoltNewmarkCreate(BoltOperator *, BoltNewmark **);
@@ -249,6 +258,8 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *);
 PetscErrorCode BoltNewmarkRun(BoltNewmark *);
 PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
+PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
+PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
 
 /* fom.c: the full-order operator */
 PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltOperator **);

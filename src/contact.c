@@ -227,6 +227,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
         }
         e       = &c->elem[c->nelem];
         e->pair = p;
+        e->key  = m->pointOriginal[face - m->pStart];
         PetscCall(PetscArraycpy(e->Xa, X, 12));
         for (PetscInt a = 0; a < 4; a++) {
           const BoltNode *bn;
@@ -688,5 +689,78 @@ PetscErrorCode BoltContactSetPenetration(BoltContactSet *c, PetscReal g[], Petsc
     loc = PetscMax(loc, -(g[3 * gp] * n[0] + g[3 * gp + 1] * n[1] + g[3 * gp + 2] * n[2]));
   }
   PetscCall(MPIU_Allreduce(&loc, pen, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* With a clamp, every part must be held: clamped itself, or joined to a held part by shared
+   nodes or a contact pair. A part that is not floats, and every solve with it is singular. */
+PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *c)
+{
+  BoltMesh    *m  = c->mesh;
+  PetscInt     np = m->nparts, nv, *verts, held[BOLTROM_MAX_PARTS], adj[BOLTROM_MAX_PARTS][BOLTROM_MAX_PARTS];
+  DM           dmv;
+  PetscSection s;
+  Vec          loc, ind[BOLTROM_MAX_PARTS + 1];
+
+  PetscFunctionBeginUser;
+  if (!m->clamp) PetscFunctionReturn(0);
+  /* one indicator per part (and one for the clamp) on the vertices, summed over the ranks */
+  PetscCall(DMClone(m->dm, &dmv));
+  PetscCall(PetscSectionCreate(m->comm, &s));
+  PetscCall(PetscSectionSetChart(s, m->pStart, m->pEnd));
+  for (PetscInt v = m->vStart; v < m->vEnd; v++) PetscCall(PetscSectionSetDof(s, v, 1));
+  PetscCall(PetscSectionSetUp(s));
+  PetscCall(DMSetLocalSection(dmv, s));
+  PetscCall(DMCreateLocalVector(dmv, &loc));
+  for (PetscInt p = 0; p <= np; p++) {
+    PetscScalar *a;
+    PetscCall(VecZeroEntries(loc));
+    PetscCall(VecGetArray(loc, &a));
+    if (p < np) {
+      for (PetscInt cell = m->cStart; cell < m->cEnd; cell++) {
+        PetscInt cv[8], off;
+        if (m->cellPart[cell - m->cStart] != p) continue;
+        PetscCall(BoltMeshCellVertices(m, cell, cv));
+        for (PetscInt k = 0; k < 8; k++) {
+          PetscCall(PetscSectionGetOffset(s, cv[k], &off));
+          a[off] = 1;
+        }
+      }
+    } else {
+      PetscCall(BoltMeshGroupVertices(m, m->clampGroup, PETSC_FALSE, &nv, &verts));
+      for (PetscInt k = 0; k < nv; k++) {
+        PetscInt off;
+        PetscCall(PetscSectionGetOffset(s, verts[k], &off));
+        a[off] = 1;
+      }
+      PetscCall(PetscFree(verts));
+    }
+    PetscCall(VecRestoreArray(loc, &a));
+    PetscCall(DMCreateGlobalVector(dmv, &ind[p]));
+    PetscCall(VecZeroEntries(ind[p]));
+    PetscCall(DMLocalToGlobal(dmv, loc, ADD_VALUES, ind[p]));
+  }
+  for (PetscInt p = 0; p < np; p++) {
+    PetscScalar d;
+    PetscCall(VecDot(ind[p], ind[np], &d));
+    held[p] = PetscRealPart(d) > 0;
+    for (PetscInt q = 0; q < np; q++) {
+      PetscCall(VecDot(ind[p], ind[q], &d));
+      adj[p][q] = p != q && PetscRealPart(d) > 0;
+    }
+  }
+  for (PetscInt k = 0; k < c->npairs; k++) adj[c->pairPart[k][0]][c->pairPart[k][1]] = adj[c->pairPart[k][1]][c->pairPart[k][0]] = 1;
+  for (PetscBool grew = PETSC_TRUE; grew;) { /* spread the support along the joins */
+    grew = PETSC_FALSE;
+    for (PetscInt p = 0; p < np; p++)
+      for (PetscInt q = 0; q < np && !held[p]; q++)
+        if (held[q] && adj[p][q]) held[p] = grew = PETSC_TRUE;
+  }
+  for (PetscInt p = 0; p <= np; p++) PetscCall(VecDestroy(&ind[p]));
+  PetscCall(VecDestroy(&loc));
+  PetscCall(PetscSectionDestroy(&s));
+  PetscCall(DMDestroy(&dmv));
+  for (PetscInt p = 0; p < np; p++)
+    PetscCheck(held[p], m->comm, PETSC_ERR_USER_INPUT, "Part %s is held by neither the clamp group '%s' nor, through shared nodes or contact pairs (contact_<pair>_a/_b), by a part that is: it would float free; extend the clamp group, add a contact pair, or run free-free with -clamp false", m->partName[p], m->clampGroup);
   PetscFunctionReturn(0);
 }

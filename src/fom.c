@@ -54,6 +54,7 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   op->solverType = MATSOLVERMUMPS;
   op->exactConstraints = PETSC_TRUE;
   op->augment          = contact->augmentOption;
+  op->meshLayout       = PETSC_TRUE;
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
   op->M = asmb->M;
   op->K = asmb->K;

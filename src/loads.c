@@ -138,6 +138,11 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
     PetscCall(BoltLoadFaces(m, n2, faces, l->loadDirection, 1.0, l->loadUnit));
   }
   else PetscCall(BoltLoadSpread(m, l->loadGroup, l->loadDirection, 1.0, l->loadUnit, &n));
+  {
+    PetscReal nrm;
+    PetscCall(VecNorm(l->loadUnit, NORM_INFINITY, &nrm));
+    PetscCheck(nrm > 0, m->comm, PETSC_ERR_USER_INPUT, "Load group '%s' lies entirely on clamped nodes (group '%s'): its force would act on nothing; choose a group on a free part with -load_group", l->loadGroup, m->clamp ? m->clampGroup : "none");
+  }
   PetscCall(VecAXPY(l->load, l->loadForce, l->loadUnit));
   PetscCall(PetscFree(faces));
   /* preload: pulls the two layers together, so the stud between them is shortened */
@@ -159,6 +164,16 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
   PetscCheck(n >= 1, m->comm, PETSC_ERR_USER_INPUT, "Probe group '%s' is not in mesh %s: add the point group or set -probe_group", l->probeGroup, m->filename);
   l->probeDof = -1;
   for (PetscInt d = 0; d < 3; d++) l->probeCoord[d] = 0;
+  {
+    PetscInt clamped = 0, any;
+    if (nv > 0) {
+      PetscInt idx[3];
+      PetscCall(BoltMeshVertexDofs(m, verts[0], idx));
+      clamped = idx[l->probeComponent] < 0;
+    }
+    PetscCall(MPIU_Allreduce(&clamped, &any, 1, MPIU_INT, MPI_MAX, m->comm));
+    PetscCheck(!any, m->comm, PETSC_ERR_USER_INPUT, "Probe group '%s' is a clamped node (group '%s'): its displacement is zero; choose a free node with -probe_group", l->probeGroup, m->clampGroup);
+  }
   if (nv > 0) {
     PetscInt           idx[3], off;
     Vec                coords;

@@ -219,6 +219,7 @@ static PetscErrorCode BoltRun(void)
   PetscCall(BoltMeshSetUp(mesh));
   PetscCall(BoltAssemblerSetUp(asmb));
   PetscCall(BoltContactSetSetUp(contact));
+  PetscCall(BoltContactSetCheckSupport(contact));
   PetscCall(MatCreateVecs(asmb->K, &u, NULL));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
   PetscCall(BoltLoadSetSetUp(loads, u));
@@ -305,6 +306,7 @@ static PetscErrorCode BoltRun(void)
     PetscCall(BoltContactSetResetState(contact));
     PetscCall(BoltFOMCreate(asmb, contact, loads, &fomOp));
     PetscCall(BoltNewmarkCreate(fomOp, &fomNm));
+    PetscCall(PetscSNPrintf(fomNm->checkpointBase, sizeof(fomNm->checkpointBase), "%s/%s", opt.outputDir, opt.outputName));
     PetscCall(BoltNewmarkSetFromOptions(fomNm));
     fomNm->preloadTarget = loads->hasPreload ? loads->preloadForce : 0;
     PetscCall(BoltNewmarkSetUp(fomNm));
@@ -343,6 +345,7 @@ static PetscErrorCode BoltRun(void)
       PetscCall(MatDestroy(&Kt));
     }
     PetscCall(BoltNewmarkCreate(romOp, &romNm));
+    PetscCall(PetscSNPrintf(romNm->checkpointBase, sizeof(romNm->checkpointBase), "%s/%s", opt.outputDir, opt.outputName));
     PetscCall(BoltNewmarkSetFromOptions(romNm));
     romNm->preloadTarget = loads->hasPreload ? loads->preloadForce : 0;
     PetscCall(BoltNewmarkSetUp(romNm));
@@ -357,6 +360,14 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltHistoryErrors(fomNm->nsteps + 1, fomNm->probeValue, romNm->probeValue, &errL2, &errMean));
       PetscCall(PetscPrintf(comm, "ROM against FOM at '%s': e_L2 %.4e, mean relative error %.4e; speedup (online) %.1f\n", loads->probeGroup, (double)errL2, (double)errMean, (double)(fomNm->tOnline / romNm->tOnline)));
     }
+  }
+  if (!opt.rom) { /* a scene file may carry the ROM's settings while the ROM is switched off */
+    BoltReductionOptions ropt;
+    BoltKrylov          *kry;
+    PetscCall(BoltReductionOptionsSetFromOptions(comm, &ropt));
+    PetscCall(BoltKrylovCreate(comm, &kry));
+    PetscCall(BoltKrylovSetFromOptions(kry));
+    PetscCall(BoltKrylovDestroy(&kry));
   }
   /* every option must have been used before anything is written */
   PetscCall(BoltCheckUnusedOptions(comm));

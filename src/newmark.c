@@ -24,6 +24,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
   nm->inner          = 1;
   nm->calibratePreload = PETSC_TRUE;
   nm->preloadScale   = 1.0;
+  PetscCall(PetscStrncpy(nm->checkpointBase, "output/joint", sizeof(nm->checkpointBase)));
   *nmp               = nm;
   PetscFunctionReturn(0);
 }
@@ -54,7 +55,12 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsBool("-preload_calibrate", "Scale the preload layer forces so that the bolt clamps with -preload_force (the layer between them is elastic)", NULL, nm->calibratePreload, &nm->calibratePreload, NULL));
   PetscCall(PetscOptionsInt("-snapshot_every", "Keep the displacement field every this many steps for ParaView (0: none)", NULL, nm->snapshotEvery, &nm->snapshotEvery, NULL));
   PetscCall(PetscOptionsBool("-monitor", "Print a line per time step", NULL, nm->monitor, &nm->monitor, NULL));
+  PetscCall(PetscOptionsInt("-checkpoint_every", "Write a checkpoint every this many steps (0: none); files <-checkpoint_file>-fom.ckpt.h5 and -rom.ckpt.h5", NULL, nm->checkpointEvery, &nm->checkpointEvery, NULL));
+  PetscCall(PetscOptionsString("-checkpoint_file", "Base name of the checkpoint files (default: <output_dir>/<output_name>)", NULL, nm->checkpointBase, nm->checkpointBase, sizeof(nm->checkpointBase), NULL));
+  PetscCall(PetscOptionsBool("-restart", "Continue each model's transient from its checkpoint (same mesh, ranks, time step; -ts_end may be later)", NULL, nm->restart, &nm->restart, NULL));
   PetscOptionsEnd();
+  PetscCheck(nm->checkpointEvery >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every must be >= 0 (got %" PetscInt_FMT ")", nm->checkpointEvery);
+  if (nm->checkpointEvery > 0) PetscCall(BoltMakeParentDir(comm, nm->checkpointBase)); /* fail now, not at the first checkpoint */
   PetscCheck(nm->dt > 0, comm, PETSC_ERR_USER_INPUT, "-ts_dt must be > 0 (got %g)", (double)nm->dt);
   PetscCheck(nm->tEnd >= nm->dt, comm, PETSC_ERR_USER_INPUT, "-ts_end (%g) must be at least one time step -ts_dt (%g)", (double)nm->tEnd, (double)nm->dt);
   PetscCheck(nm->beta > 0 && nm->gamma >= 0.5, comm, PETSC_ERR_USER_INPUT, "Newmark needs beta > 0 and gamma >= 1/2 (got %g, %g)", (double)nm->beta, (double)nm->gamma);
@@ -427,11 +433,13 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscReal     *a    = nm->a;
   Vec            qOld;
   PetscLogDouble t0, t1;
+  PetscInt       step0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(VecDuplicate(nm->q, &qOld));
   PetscCall(BoltNewmarkSetK0(nm, PETSC_TRUE));
+  nm->tOnlineBefore = nm->tCheckpoint = 0;
   /* counters from here on describe the transient; the static solve keeps its own */
   nm->staticFactorizations = nm->factorizations;
   nm->staticSolves         = nm->solves;
@@ -445,7 +453,9 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     nm->nsnap       = 1;
   }
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0]));
-  for (PetscInt n = 1; n <= nm->nsteps; n++) {
+  if (nm->restart) PetscCall(BoltNewmarkCheckpointRead(nm)); /* state, contact state and histories */
+  step0 = nm->step;
+  for (PetscInt n = step0 + 1; n <= nm->nsteps; n++) {
     PetscReal t = n * nm->dt, amp = BoltLoadAmplitude(nm, t);
     PetscInt  nout, nin;
 
@@ -460,7 +470,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     PetscCall(MatMultAdd(op->C, nm->work, nm->rhs, nm->rhs));
     PetscCall(VecAXPY(nm->rhs, amp, op->load));
     PetscCall(VecAXPY(nm->rhs, 1.0, op->preload));
-    PetscCall(BoltDualLoop(nm, nm->rhs, n == 1 ? PETSC_TRUE : PETSC_FALSE, &nout, &nin));
+    PetscCall(BoltDualLoop(nm, nm->rhs, n == step0 + 1 ? PETSC_TRUE : PETSC_FALSE, &nout, &nin));
     /* a_new = a1 (q - q_old) - a2 v - a3 a;  v_new = v + dt ((1 - gamma) a + gamma a_new) */
     PetscCall(VecWAXPY(nm->work, -1.0, qOld, nm->q));
     PetscCall(VecAXPBYPCZ(nm->work, -a[2], -a[3], a[1], nm->v, nm->acc));
@@ -474,10 +484,18 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     PetscCall(op->probe(op, nm->q, &nm->probeValue[n]));
     PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n]));
     if (nm->monitor) PetscCall(PetscPrintf(comm, "%s step %5" PetscInt_FMT " t %.6e outer %2" PetscInt_FMT " inner %3" PetscInt_FMT " active %" PetscInt_FMT "/%" PetscInt_FMT " energy %.10e probe %.6e\n", op->name, n, (double)t, nout, nin, op->contact->nactive, op->contact->ngpGlobal, (double)nm->energy[n], (double)nm->probeValue[n]));
+    if (nm->checkpointEvery > 0 && n % nm->checkpointEvery == 0) {
+      PetscLogDouble tc0, tc1;
+      PetscCall(PetscTime(&tc0));
+      nm->tOnline = nm->tOnlineBefore + (tc0 - t0) - nm->tCheckpoint;
+      PetscCall(BoltNewmarkCheckpointWrite(nm));
+      PetscCall(PetscTime(&tc1));
+      nm->tCheckpoint += tc1 - tc0;
+    }
   }
   PetscCall(VecDestroy(&qOld));
   PetscCall(PetscTime(&t1));
-  nm->tOnline = t1 - t0;
+  nm->tOnline = nm->tOnlineBefore + (t1 - t0) - nm->tCheckpoint;
   PetscFunctionReturn(0);
 }
 

@@ -132,3 +132,52 @@ def test_rom_file_from_another_mesh(joint_small, beam, tmp_path):
     other = tmp_path / "other.msh"
     make_mesh("joint", other, 0.6)
     expect_error(["-mesh", other] + common + ["-rom_rebuild", "false"], tmp_path, "does not match", "mesh")
+
+
+@pytest.fixture(scope="module")
+def joint_ascii(meshdir):
+    return make_mesh("joint", meshdir / "joint-ascii-L0.5.msh", 0.5, ["--ascii"])[0]
+
+
+def test_part_left_floating(joint_ascii, tmp_path):
+    """Without its two contact pairs the nut-side washer touches nothing that is held."""
+    text = joint_ascii.read_text()
+    for pair in ("plate1_washer", "washer_nut"):
+        assert f'"contact_{pair}_a"' in text
+        text = text.replace(f'"contact_{pair}_a"', f'"unpaired_{pair}_a"')
+    bad = tmp_path / "floating.msh"
+    bad.write_text(text)
+    expect_error(["-mesh", bad, "-modal_nev", "0"], tmp_path, "Part washer_nut", "float", "-clamp false")
+
+
+def test_contact_surfaces_do_not_match(joint_ascii, tmp_path):
+    """One node of a contact side moved by 20 um: the pair is no longer meshed node to node."""
+    bad = tmp_path / "mismatch.msh"
+    tagfile = tmp_path / "node.txt"
+    gmsh_script(f"""
+gmsh.open({str(joint_ascii)!r})
+tag = [t for d, t in gmsh.model.getPhysicalGroups(2) if gmsh.model.getPhysicalName(d, t) == 'contact_plate2_plate1_b'][0]
+nodes, _ = gmsh.model.mesh.getNodesForPhysicalGroup(2, tag)
+open({str(tagfile)!r}, 'w').write(str(int(nodes[0])))""", tmp_path)
+    node = int(tagfile.read_text())
+    lines = joint_ascii.read_text().splitlines()
+    i = lines.index("$Nodes") + 2
+    while True:  # entity blocks: a header, the node tags, then their coordinates
+        count = int(lines[i].split()[3])
+        tags = [int(t) for t in lines[i + 1:i + 1 + count]]
+        if node in tags:
+            k = i + 1 + count + tags.index(node)
+            x = [float(v) for v in lines[k].split()]
+            lines[k] = " ".join(repr(v) for v in [x[0] + 2e-5] + x[1:])
+            break
+        i += 1 + 2 * count
+    bad.write_text("\n".join(lines) + "\n")
+    expect_error(["-mesh", bad, "-modal_nev", "0"], tmp_path, "plate2_plate1", "no partner on side b", "node to node")
+
+
+def test_load_on_clamped_nodes(beam, tmp_path):
+    expect_error(["-mesh", beam, "-load_group", "clamp"], tmp_path, "'clamp'", "clamped", "-load_group")
+
+
+def test_probe_on_clamped_node(beam, tmp_path):
+    expect_error(["-mesh", beam, "-load_group", "tip", "-probe_group", "clamp"], tmp_path, "Probe group 'clamp'", "clamped", "-probe_group")

@@ -1,0 +1,109 @@
+"""Faults: checkpoints and restart (the continuation equals the uninterrupted run), and a run
+killed mid-way leaves the previous results and the last checkpoint complete."""
+import json
+import signal
+import subprocess
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import BOLTROM, ENV, ROOT, run_boltrom
+
+SCENE = ["-options_file", ROOT / "inputs" / "paper-step.yaml", "-rom_n_ccm", "20", "-rom_n_jim", "20",
+         "-ts_dt", "1e-4", "-contact_tol_lambda", "1e-9", "-contact_max_inner", "2000"]
+
+
+def scene(mesh, tmp, name, end, *extra):
+    return SCENE + ["-mesh", mesh, "-rom_file", tmp / "rom.h5", "-ts_end", end, "-output_dir", tmp / name,
+                    "-summary", tmp / name / "summary.json"] + list(extra)
+
+
+def histories(path):
+    with h5py.File(path) as f:
+        return {m: (f[f"/{m}/probe"][...], f[f"/{m}/energy"][...]) for m in ("fom", "rom")}
+
+
+def rel(a, b):
+    return np.abs(a - b).max() / np.abs(a).max()
+
+
+@pytest.fixture(scope="module")
+def restart_runs(joint_small, tmp_path_factory):
+    """An uninterrupted 40-step run; a run stopped at step 20 with checkpoints every 10 steps;
+    its continuation to step 40 on 1 rank and on 2 ranks (a checkpoint is keyed by the mesh as
+    read, not by the partition)."""
+    mesh, _ = joint_small
+    tmp = tmp_path_factory.mktemp("restart")
+    run_boltrom(scene(mesh, tmp, "full", "4e-3"))
+    run_boltrom(scene(mesh, tmp, "part", "2e-3", "-checkpoint_every", "10"))
+    base = tmp / "part" / "paper-step"
+    run_boltrom(scene(mesh, tmp, "rest1", "4e-3", "-restart", "-checkpoint_file", base))
+    run_boltrom(scene(mesh, tmp, "rest2", "4e-3", "-restart", "-checkpoint_file", base), ranks=2)
+    return mesh, tmp
+
+
+def test_restart_reproduces_the_uninterrupted_run(restart_runs):
+    _, tmp = restart_runs
+    full, rest = histories(tmp / "full" / "paper-step.h5"), histories(tmp / "rest1" / "paper-step.h5")
+    for m in ("fom", "rom"):
+        assert len(full[m][0]) == len(rest[m][0]) == 41
+        assert rel(full[m][0], rest[m][0]) <= 1e-12, m
+        assert rel(full[m][1], rest[m][1]) <= 1e-12, m
+    # the counters carry over: the restarted run reports the whole run (plus the factorisation
+    # of the restored effective matrix, which a checkpoint does not hold)
+    s_full = json.loads((tmp / "full" / "summary.json").read_text())
+    s_rest = json.loads((tmp / "rest1" / "summary.json").read_text())
+    for m in ("fom", "rom"):
+        assert s_full[m]["factorizations"] <= s_rest[m]["factorizations"] <= s_full[m]["factorizations"] + 1, m
+        assert s_rest[m]["solves"] == s_full[m]["solves"], m
+
+
+def test_restart_on_other_ranks(restart_runs):
+    """A 1-rank checkpoint continued on 2 ranks: the same history to the contact loop's tolerance."""
+    _, tmp = restart_runs
+    full, rest = histories(tmp / "full" / "paper-step.h5"), histories(tmp / "rest2" / "paper-step.h5")
+    for m in ("fom", "rom"):
+        assert rel(full[m][0], rest[m][0]) <= 1e-8, m
+
+
+def test_restart_refuses_another_run(restart_runs, tmp_path):
+    mesh, tmp = restart_runs
+    base = tmp / "part" / "paper-step"
+    p = run_boltrom(scene(mesh, tmp_path, "x", "4e-3", "-rom", "false", "-restart", "-checkpoint_file", base,
+                          "-ts_dt", "2e-4"), check=False)
+    assert p.returncode != 0 and "written by another run" in p.stderr and "dt 0.0002" in p.stderr
+    assert not (tmp_path / "x" / "paper-step.h5").exists()
+    p = run_boltrom(scene(mesh, tmp_path, "y", "4e-3", "-rom", "false", "-restart", "-checkpoint_file", tmp_path / "none"),
+                    check=False)
+    assert p.returncode != 0 and "there is no checkpoint" in p.stderr and "-checkpoint_every" in p.stderr
+    p = run_boltrom(scene(mesh, tmp_path, "z", "1e-3", "-rom", "false", "-restart", "-checkpoint_file", base),
+                    check=False)
+    assert p.returncode != 0 and "past the end of this run" in p.stderr
+
+
+def test_killed_run_leaves_previous_results(joint_small, tmp_path):
+    """A first run writes results and checkpoints; a second, longer run into the same folder is
+    killed mid-way: the first run's results are untouched, the last checkpoint is complete, and
+    the run goes on from it."""
+    mesh, _ = joint_small
+    args = scene(mesh, tmp_path, "out", "1e-3", "-rom", "false", "-checkpoint_every", "5")
+    run_boltrom(args)
+    out = tmp_path / "out"
+    before = {p.name: p.read_bytes() for p in (out / "paper-step.h5", out / "paper-step.xmf", out / "summary.json")}
+    longer = scene(mesh, tmp_path, "out", "8e-3", "-rom", "false", "-checkpoint_every", "5", "-monitor")
+    proc = subprocess.Popen([str(BOLTROM)] + [str(a) for a in longer], stdout=subprocess.PIPE, text=True, env=ENV, cwd=ROOT)
+    for line in proc.stdout:
+        if line.startswith("FOM step") and int(line.split()[2]) >= 23:
+            break
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    for name, data in before.items():
+        assert (out / name).read_bytes() == data, name
+    with h5py.File(out / "paper-step-fom.ckpt.h5") as f:
+        step = int(f["/checkpoint/history"].attrs["step"])
+        assert step >= 20 and step % 5 == 0 and len(f["/checkpoint/history"]) == 14 + 3 * (step + 1)
+    p = run_boltrom(longer[:-1] + ["-restart"])
+    assert f"restarted from {out / 'paper-step-fom.ckpt.h5'} at step {step}" in p.stdout
+    with h5py.File(out / "paper-step.h5") as f:
+        assert len(f["/fom/probe"]) == 81 and np.all(np.isfinite(f["/fom/probe"][...]))
