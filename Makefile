@@ -76,7 +76,7 @@ run: deps all $(MESH_LEVEL1)
 	  -summary output/paper-step/summary.json
 	$(PYTHON) python/plot_history.py output/paper-step/step.png output/paper-step/paper-step.h5
 
-# FOM against ROM (same run) per mesh level, and a sweep of ROM settings; FOM stress sweep.
+# FOM against ROM (same run) per mesh level, and a sweep of ROM settings.
 bench: deps all
 	$(PYTHON) scripts/bench-rom --np $(NP) --levels $(LEVELS)
 
@@ -84,7 +84,9 @@ bench: deps all
 paper: deps all
 	$(PYTHON) scripts/reproduce-paper --np $(NP)
 
+# FOM and ROM stress sweep and the envelope table (output/stress/); the FOM's loop options.
 stress: deps all
+	$(PYTHON) scripts/stress --np $(NP)
 	$(PYTHON) scripts/stress-fom --np $(NP)
 
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).

@@ -113,6 +113,7 @@ typedef struct {
   PetscInt            pairPart[BOLTROM_MAX_PAIRS][2];
   PetscReal           penaltyFactor;              /* x E of the softer part, per metre */
   PetscReal           epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS];
+  PetscReal           bandTraction[BOLTROM_MAX_PAIRS]; /* tension [Pa] beyond which a closed point opens */
   PetscInt            contactDofsPerPair[BOLTROM_MAX_PAIRS], contactDofs;
   PetscInt            elementsPerPair[BOLTROM_MAX_PAIRS];
   PetscReal           areaPerPair[BOLTROM_MAX_PAIRS];
@@ -260,6 +261,7 @@ PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
+PetscErrorCode BoltCheckpointPath(const char[], const char[], char[], size_t);
 
 /* fom.c: the full-order operator */
 PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltOperator **);

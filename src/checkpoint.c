@@ -27,14 +27,22 @@ static PetscErrorCode BoltCheckpointFingerprint(BoltNewmark *nm, char fp[], size
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode BoltCheckpointFileName(BoltNewmark *nm, char file[], size_t len)
+/* <base>-fom.ckpt.h5 or <base>-rom.ckpt.h5 */
+PetscErrorCode BoltCheckpointPath(const char base[], const char model[], char file[], size_t len)
 {
-  char model[8];
+  char lower[8];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscStrncpy(model, nm->op->name, sizeof(model)));
-  for (char *p = model; *p; p++) *p = (char)tolower((unsigned char)*p);
-  PetscCall(PetscSNPrintf(file, len, "%s-%s.ckpt.h5", nm->checkpointBase, model));
+  PetscCall(PetscStrncpy(lower, model, sizeof(lower)));
+  for (char *p = lower; *p; p++) *p = (char)tolower((unsigned char)*p);
+  PetscCall(PetscSNPrintf(file, len, "%s-%s.ckpt.h5", base, lower));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltCheckpointFileName(BoltNewmark *nm, char file[], size_t len)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltCheckpointPath(nm->checkpointBase, nm->op->name, file, len));
   PetscFunctionReturn(0);
 }
 
@@ -221,7 +229,10 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   PetscFunctionBeginUser;
   PetscCall(BoltCheckpointFileName(nm, file, sizeof(file)));
   PetscCall(PetscTestFile(file, 'r', &exists));
-  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart: there is no checkpoint %s for the %s; write one first with -checkpoint_every N (and the same -checkpoint_file)", file, op->name);
+  if (!exists) { /* killed before this model's first checkpoint (main checks that one exists) */
+    PetscCall(PetscPrintf(comm, "%s: no checkpoint %s: starting at step 0\n", op->name, file));
+    PetscFunctionReturn(0);
+  }
   PetscCall(BoltCheckpointFingerprint(nm, fp, sizeof(fp)));
   dist = op->meshLayout;
   PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));

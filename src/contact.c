@@ -304,6 +304,9 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
       PetscOptionsEnd();
       PetscCheck(factor > 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be > 0 (got %g)", opt, (double)factor);
       c->epsN[p] = c->epsT[p] = factor * PetscMin(Ea, Eb);
+      /* the opening band in traction is that of the default penalty (200 E/m) at the activation
+         gap, whatever the penalty: scaled with eps_N, a stiff penalty kept every point closed */
+      c->bandTraction[p] = 200.0 * PetscMin(Ea, Eb) * c->activationGap;
     }
   }
   PetscCall(PetscLogEventEnd(boltLog.contactSetUp, 0, 0, 0, 0));
@@ -521,13 +524,13 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
       PetscReal t[3];
       PetscBool now;
       BoltContactTrialTraction(&c->lambda[3 * gp], &c->gap[3 * gp], &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], t);
-      /* A band of width activationGap (or the traction eps_N activationGap) around zero keeps
+      /* A band of width activationGap (or the traction bandTraction) around zero keeps
          points at the edge of the contact zone, whose gaps and tractions are at round-off
          level, from chattering between the sets: a closed point opens when its traction is
          tensile beyond the band, an open point closes when it penetrates beyond it. */
       {
         const PetscReal *g = &c->gap[3 * gp], *n = &c->gpNormal[3 * gp], *tr = (c->active[gp] && c->augment) ? &c->lambda[3 * gp] : t; /* lambda: the converged traction */
-        const PetscReal  band = c->epsN[pair] * c->activationGap;
+        const PetscReal  band = c->bandTraction[pair];
         if (c->active[gp]) now = (tr[0] * n[0] + tr[1] * n[1] + tr[2] * n[2]) < band ? PETSC_TRUE : PETSC_FALSE;
         else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > c->activationGap ? PETSC_TRUE : PETSC_FALSE;
       }
