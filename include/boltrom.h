@@ -261,7 +261,6 @@ PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
-PetscErrorCode BoltCheckpointPath(const char[], const char[], char[], size_t);
 
 /* fom.c: the full-order operator */
 PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltOperator **);
@@ -355,5 +354,6 @@ PetscErrorCode BoltJSONRealArray(BoltJSON *, const char[], PetscInt, const Petsc
 PetscErrorCode BoltJSONClose(BoltJSON *);
 PetscErrorCode BoltMakeDir(MPI_Comm, const char[]);
 PetscErrorCode BoltMakeParentDir(MPI_Comm, const char[]);
+PetscErrorCode BoltHDF5WriteValues(PetscViewer, MPI_Comm, const char[], PetscInt, PetscInt, const PetscScalar[], PetscBool);
 
 #endif

@@ -28,7 +28,7 @@ static PetscErrorCode BoltCheckpointFingerprint(BoltNewmark *nm, char fp[], size
 }
 
 /* <base>-fom.ckpt.h5 or <base>-rom.ckpt.h5 */
-PetscErrorCode BoltCheckpointPath(const char base[], const char model[], char file[], size_t len)
+static PetscErrorCode BoltCheckpointPath(const char base[], const char model[], char file[], size_t len)
 {
   char lower[8];
 
@@ -43,26 +43,6 @@ static PetscErrorCode BoltCheckpointFileName(BoltNewmark *nm, char file[], size_
 {
   PetscFunctionBeginUser;
   PetscCall(BoltCheckpointPath(nm->checkpointBase, nm->op->name, file, len));
-  PetscFunctionReturn(0);
-}
-
-/* Writes n values of this rank (rank 0 only: root) as one dataset of the communicator. */
-static PetscErrorCode BoltWriteLocal(PetscViewer v, MPI_Comm comm, const char name[], PetscInt n, const PetscScalar x[], PetscBool rootOnly)
-{
-  PetscMPIInt rank;
-  Vec         w;
-  PetscScalar *a;
-
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rootOnly && rank) n = 0;
-  PetscCall(VecCreateMPI(comm, n, PETSC_DETERMINE, &w));
-  PetscCall(PetscObjectSetName((PetscObject)w, name));
-  PetscCall(VecGetArray(w, &a));
-  PetscCall(PetscArraycpy(a, x, n));
-  PetscCall(VecRestoreArray(w, &a));
-  PetscCall(VecView(w, v));
-  PetscCall(VecDestroy(&w));
   PetscFunctionReturn(0);
 }
 
@@ -165,7 +145,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
       else PetscCall(PetscSNPrintf(name, sizeof(name), "snapshot_%" PetscInt_FMT, f - 3));
       PetscCall(VecGetLocalSize(x, &n));
       PetscCall(VecGetArrayRead(x, &a));
-      PetscCall(BoltWriteLocal(v, comm, name, n, a, dist ? PETSC_FALSE : PETSC_TRUE));
+      PetscCall(BoltHDF5WriteValues(v, comm, name, n, 1, a, dist ? PETSC_FALSE : PETSC_TRUE));
       PetscCall(VecRestoreArrayRead(x, &a));
     }
   }
@@ -178,12 +158,12 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
     PetscCall(op->contactStiffness(op, &Kc));
     PetscCall(MatGetSize(Kc, &nr, NULL));
     PetscCall(MatDenseGetArrayRead(Kc, &a));
-    PetscCall(BoltWriteLocal(v, comm, "reduced_contact_stiffness", nr * nr, a, PETSC_TRUE));
+    PetscCall(BoltHDF5WriteValues(v, comm, "reduced_contact_stiffness", nr * nr, 1, a, PETSC_TRUE));
     PetscCall(MatDenseRestoreArrayRead(Kc, &a));
   }
   PetscCall(PetscMalloc1(BOLT_CKPT_CONTACT * ne + nhist + 1, &buf));
   for (PetscInt e = 0; e < ne; e++) buf[e] = c->elem[e].key;
-  PetscCall(BoltWriteLocal(v, comm, "contact_keys", ne, buf, PETSC_FALSE));
+  PetscCall(BoltHDF5WriteValues(v, comm, "contact_keys", ne, 1, buf, PETSC_FALSE));
   for (PetscInt e = 0; e < ne; e++) {
     for (PetscInt i = 0; i < 12; i++) buf[k++] = c->lambda[12 * e + i];
     for (PetscInt i = 0; i < 12; i++) buf[k++] = c->gap[12 * e + i];
@@ -191,7 +171,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
     for (PetscInt i = 0; i < 4; i++) buf[k++] = c->activeOld[4 * e + i];
     for (PetscInt i = 0; i < 4; i++) buf[k++] = c->activeOlder[4 * e + i];
   }
-  PetscCall(BoltWriteLocal(v, comm, "contact_state", BOLT_CKPT_CONTACT * ne, buf, PETSC_FALSE));
+  PetscCall(BoltHDF5WriteValues(v, comm, "contact_state", BOLT_CKPT_CONTACT * ne, 1, buf, PETSC_FALSE));
   {
     PetscReal g[BOLT_CKPT_NGLOBALS] = {(PetscReal)nm->step, (PetscReal)nm->nsnap, (PetscReal)nm->factorizations, (PetscReal)nm->solves, (PetscReal)nm->outerTotal, (PetscReal)nm->innerTotal, (PetscReal)nm->outerMax, (PetscReal)nm->innerMax, (PetscReal)nm->cycles, (PetscReal)nm->failures, nm->tContactStiffness, nm->tDisplacements, nm->tContactForces, nm->tOnline};
     k = 0;
@@ -200,7 +180,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->probeValue[i];
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->energy[i];
     for (PetscInt i = 0; i < nm->nsnap; i++) buf[k++] = nm->snapTime[i];
-    PetscCall(BoltWriteLocal(v, comm, "history", nhist, buf, PETSC_TRUE));
+    PetscCall(BoltHDF5WriteValues(v, comm, "history", nhist, 1, buf, PETSC_TRUE));
   }
   PetscCall(PetscFree(buf));
   PetscCall(PetscViewerHDF5PopGroup(v));
@@ -229,7 +209,13 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   PetscFunctionBeginUser;
   PetscCall(BoltCheckpointFileName(nm, file, sizeof(file)));
   PetscCall(PetscTestFile(file, 'r', &exists));
-  if (!exists) { /* killed before this model's first checkpoint (main checks that one exists) */
+  if (!exists) {
+    /* a model killed before its first checkpoint starts over, but with no checkpoint of
+       either model the base name is probably wrong */
+    char other[PETSC_MAX_PATH_LEN];
+    PetscCall(BoltCheckpointPath(nm->checkpointBase, nm->op->meshLayout ? "ROM" : "FOM", other, sizeof(other)));
+    PetscCall(PetscTestFile(other, 'r', &exists));
+    PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart: there is no checkpoint %s; write one first with -checkpoint_every N (and the same -checkpoint_file)", file);
     PetscCall(PetscPrintf(comm, "%s: no checkpoint %s: starting at step 0\n", op->name, file));
     PetscFunctionReturn(0);
   }

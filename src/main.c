@@ -301,22 +301,6 @@ static PetscErrorCode BoltRun(void)
       PetscCall(PetscPrintf(comm, "Rigid motions of part %s: max |K r| / (|K| |r|) = %.3e\n", mesh->partName[p], (double)rigid[p]));
     }
   }
-  if (opt.fom || opt.rom) { /* -restart: a missing checkpoint is a model killed before its first
-                               one, but with none at all the base name is probably wrong */
-    PetscBool restart = PETSC_FALSE, any = PETSC_FALSE;
-    char      base[PETSC_MAX_PATH_LEN], file[PETSC_MAX_PATH_LEN];
-    PetscCall(PetscSNPrintf(base, sizeof(base), "%s/%s", opt.outputDir, opt.outputName));
-    PetscCall(PetscOptionsGetBool(NULL, NULL, "-restart", &restart, NULL));
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-checkpoint_file", base, sizeof(base), NULL));
-    for (PetscInt k = 0; k < 2 && restart; k++) {
-      PetscBool exists;
-      if (!(k ? opt.rom : opt.fom)) continue;
-      PetscCall(BoltCheckpointPath(base, k ? "ROM" : "FOM", file, sizeof(file)));
-      PetscCall(PetscTestFile(file, 'r', &exists));
-      any = (PetscBool)(any || exists);
-    }
-    PetscCheck(!restart || any, comm, PETSC_ERR_FILE_OPEN, "-restart: there is no checkpoint %s-%s.ckpt.h5; write one first with -checkpoint_every N (and the same -checkpoint_file)", base, opt.fom ? "fom" : "rom");
-  }
   if (opt.fom) {
     PetscReal force[BOLTROM_MAX_PAIRS];
     PetscCall(BoltContactSetResetState(contact));

@@ -53,6 +53,28 @@ PetscErrorCode BoltMakeParentDir(MPI_Comm comm, const char path[])
   PetscFunctionReturn(0);
 }
 
+/* One HDF5 dataset of comm from n values per rank, in rank order; rootOnly: rank 0's alone (data
+   that every rank holds alike). cols > 1 shapes it (rows, cols). */
+PetscErrorCode BoltHDF5WriteValues(PetscViewer v, MPI_Comm comm, const char name[], PetscInt n, PetscInt cols, const PetscScalar x[], PetscBool rootOnly)
+{
+  Vec          w;
+  PetscMPIInt  rank;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rootOnly && rank) n = 0;
+  PetscCall(VecCreateMPI(comm, n, PETSC_DETERMINE, &w));
+  if (cols > 1) PetscCall(VecSetBlockSize(w, cols));
+  PetscCall(PetscObjectSetName((PetscObject)w, name));
+  PetscCall(VecGetArray(w, &a));
+  PetscCall(PetscArraycpy(a, x, n));
+  PetscCall(VecRestoreArray(w, &a));
+  PetscCall(VecView(w, v));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
 /* Global vertex number of a local vertex (ghosts are encoded -(g+1) by DMPlex). */
 static inline PetscInt BoltGlobalNumber(const PetscInt *num, PetscInt i)
 {

@@ -74,27 +74,6 @@ static PetscErrorCode BoltOwnedContactDofs(BoltContactSet *c, Vec layout, PetscI
 }
 
 /* A dense array (rows x cols, row-major) known on rank 0, written as an (rows, cols) dataset. */
-static PetscErrorCode BoltWriteArray(PetscViewer v, MPI_Comm comm, const char name[], PetscInt rows, PetscInt cols, const PetscScalar *a)
-{
-  Vec         w;
-  PetscMPIInt rank;
-
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(VecCreateMPI(comm, rank == 0 ? rows * cols : 0, rows * cols, &w));
-  if (cols > 1) PetscCall(VecSetBlockSize(w, cols));
-  PetscCall(PetscObjectSetName((PetscObject)w, name));
-  if (rank == 0) {
-    PetscScalar *x;
-    PetscCall(VecGetArray(w, &x));
-    PetscCall(PetscArraycpy(x, a, rows * cols));
-    PetscCall(VecRestoreArray(w, &x));
-  }
-  PetscCall(VecView(w, v));
-  PetscCall(VecDestroy(&w));
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode BoltReadArray(PetscViewer v, const char name[], PetscInt rows, PetscInt cols, PetscScalar *a)
 {
   Vec          w;
@@ -167,13 +146,13 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   {
     const PetscScalar *x;
     PetscCall(MatDenseGetArrayRead(rom->Mr, &x));
-    PetscCall(BoltWriteArray(v, comm, "Mr", n, n, x));
+    PetscCall(BoltHDF5WriteValues(v, comm, "Mr", n * n, n, x, PETSC_TRUE));
     PetscCall(MatDenseRestoreArrayRead(rom->Mr, &x));
     PetscCall(MatDenseGetArrayRead(rom->Cr, &x));
-    PetscCall(BoltWriteArray(v, comm, "Cr", n, n, x));
+    PetscCall(BoltHDF5WriteValues(v, comm, "Cr", n * n, n, x, PETSC_TRUE));
     PetscCall(MatDenseRestoreArrayRead(rom->Cr, &x));
     PetscCall(MatDenseGetArrayRead(rom->Kr, &x));
-    PetscCall(BoltWriteArray(v, comm, "Kr", n, n, x));
+    PetscCall(BoltHDF5WriteValues(v, comm, "Kr", n * n, n, x, PETSC_TRUE));
     PetscCall(MatDenseRestoreArrayRead(rom->Kr, &x));
   }
   /* loads per unit amplitude: the file serves any amplitude */
@@ -190,8 +169,8 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
     PetscCall(VecRestoreArrayRead(rom->loadUnitr, &x));
     PetscCall(VecRestoreArrayRead(rom->preloadr, &y));
   }
-  PetscCall(BoltWriteArray(v, comm, "load_unit", n, 1, a));
-  PetscCall(BoltWriteArray(v, comm, "preload_unit", n, 1, &a[n]));
+  PetscCall(BoltHDF5WriteValues(v, comm, "load_unit", n, 1, a, PETSC_TRUE));
+  PetscCall(BoltHDF5WriteValues(v, comm, "preload_unit", n, 1, &a[n], PETSC_TRUE));
   PetscCall(PetscFree(a));
   /* rows at the contact DOFs, each rank its owned ones, in global order */
   PetscCall(BoltOwnedContactDofs(rom->contact, loads->load, &ncd, &cd));
@@ -253,7 +232,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
       PetscCall(PetscStrlcat(groups, candidates[g], sizeof(groups)));
       npts++;
     }
-    PetscCall(BoltWriteArray(v, comm, "Vpoints", 3 * npts, n, rows));
+    PetscCall(BoltHDF5WriteValues(v, comm, "Vpoints", 3 * npts * n, n, rows, PETSC_TRUE));
     PetscCall(PetscFree(rows));
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
