@@ -217,6 +217,7 @@ typedef struct {
   PetscInt        maxOuter, maxInner;
   PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
   PetscBool       continueOnFailure, monitor;
+  PetscInt        contactMonitor; /* -contact_monitor: 1 a line per outer iteration, 2 also per CG iteration */
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       calibratePreload;
   PetscReal       preloadTarget, preloadScale;
