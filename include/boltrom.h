@@ -221,6 +221,7 @@ typedef struct {
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       calibratePreload;
   PetscReal       preloadTarget, preloadScale;
+  PetscBool       calibrating; /* in the preload's dual loop: each outer iteration scales to the target clamping force */
   Mat             K0, Keff;
   KSP             ksp;
   PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */

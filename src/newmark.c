@@ -442,6 +442,34 @@ static PetscErrorCode BoltContactMonitorTension(BoltNewmark *nm)
   PetscFunctionReturn(0);
 }
 
+/* The preload layers bound an elastic element layer of the stud, which takes part of the
+   applied force; the clamping force is what a preload means. With zero initial gaps and a fixed
+   active set the static contact problem is linear in the load, so scaling the solution, the
+   multipliers, the gaps and the preload vector by target / transmitted is exact. It is done
+   after every inner solve of the preload, before the active set is updated: the activation band
+   is absolute (metres, pascals), so the set must be judged on the tractions of the calibrated
+   preload, not on those of the applied layer forces (about 15 times smaller for the joint). */
+static PetscErrorCode BoltPreloadCalibrate(BoltNewmark *nm, Vec rhs0)
+{
+  BoltContactSet *c = nm->op->contact;
+  PetscReal       force[BOLTROM_MAX_PAIRS], fmax = 0, scale;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactSetNormalForcePerPair(c, force));
+  for (PetscInt p = 0; p < c->npairs; p++) fmax = PetscMax(fmax, PetscAbsReal(force[p]));
+  PetscCheck(fmax > 0, nm->op->comm, PETSC_ERR_USER_INPUT, "The preload transmits no contact force: check the preload groups and the bolt axis (-preload_axis)");
+  scale = nm->preloadTarget / fmax;
+  nm->preloadScale *= scale;
+  PetscCall(VecScale(nm->q, scale));
+  PetscCall(VecScale(nm->op->preload, scale));
+  if (rhs0 != nm->op->preload) PetscCall(VecScale(rhs0, scale));
+  for (PetscInt k = 0; k < 12 * c->nelem; k++) {
+    c->lambda[k] *= scale;
+    c->gap[k] *= scale;
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The dual loop for one solve: K_eff q = rhs0 - B' lambda with contact. */
 static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor, PetscInt *nouter, PetscInt *ninner)
 {
@@ -461,6 +489,7 @@ static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor
     if (nm->inner == 1 && c->augment) PetscCall(BoltInnerCG(nm, rhs0, &inner));
     else PetscCall(BoltInnerUzawa(nm, rhs0, &inner));
     innerTotal += inner;
+    if (nm->calibrating) PetscCall(BoltPreloadCalibrate(nm, rhs0));
     if (nm->contactMonitor > 0 && c->augment) PetscCall(BoltContactMonitorTension(nm));
     PetscCall(BoltContactSetUpdateActive(c, &nchanged, &cycling));
     if (nm->contactMonitor > 0) PetscCall(BoltContactMonitorOuter(nm, outer, inner, nchanged, cycling));
@@ -495,27 +524,14 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
   nm->op->contact->augment = nm->op->augment; /* the contact set serves FOM and ROM: this model's law */
   PetscCall(BoltNewmarkSetK0(nm, PETSC_FALSE));
   nm->step = 0;
+  nm->preloadScale = 1.0;
+  nm->calibrating  = (nm->calibratePreload && nm->preloadTarget > 0 && !nm->staticWithLoad) ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(VecCopy(nm->op->preload, nm->rhs));
   if (nm->staticWithLoad) PetscCall(VecAXPY(nm->rhs, 1.0, nm->op->load));
   PetscCall(BoltDualLoop(nm, nm->rhs, PETSC_TRUE, &nout, &nin));
   nm->staticOuter = nout;
   nm->staticInner = nin;
-  /* The preload layers bound an elastic element layer of the stud, which takes part of the
-     applied force; the clamping force is what a preload means. With zero initial gaps the
-     static contact problem is positively homogeneous in the load, so scaling the solution,
-     the multipliers and the preload vector by target / transmitted is exact. */
-  if (nm->calibratePreload && nm->preloadTarget > 0 && !nm->staticWithLoad) {
-    BoltContactSet *c = nm->op->contact;
-    PetscReal       force[BOLTROM_MAX_PAIRS], fmax = 0, scale;
-    PetscCall(BoltContactSetNormalForcePerPair(c, force));
-    for (PetscInt p = 0; p < c->npairs; p++) fmax = PetscMax(fmax, PetscAbsReal(force[p]));
-    PetscCheck(fmax > 0, nm->op->comm, PETSC_ERR_USER_INPUT, "The preload transmits no contact force: check the preload groups and the bolt axis (-preload_axis)");
-    scale = nm->preloadTarget / fmax;
-    nm->preloadScale = scale;
-    PetscCall(VecScale(nm->q, scale));
-    PetscCall(VecScale(nm->op->preload, scale));
-    for (PetscInt k = 0; k < 12 * c->nelem; k++) c->lambda[k] *= scale;
-  }
+  nm->calibrating = PETSC_FALSE;
   PetscCall(VecZeroEntries(nm->v));
   PetscCall(VecZeroEntries(nm->acc));
   PetscFunctionReturn(0);
