@@ -106,6 +106,8 @@ typedef struct {
   PetscInt  dofs[24]; /* global DOFs of [a nodes, b nodes], -1 where clamped */
 } BoltContactElement;
 
+enum { BOLT_OPEN_NODAL = 0, BOLT_OPEN_GAUSS = 1 };
+
 typedef struct {
   BoltMesh           *mesh;
   PetscInt            npairs;
@@ -125,6 +127,8 @@ typedef struct {
   PetscBool           augmentOption;  /* -contact_augment as given; each model may choose its own law */
   PetscBool           warmStart;      /* keep the multipliers across outer iterations and steps */
   PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
+  PetscInt            openTest;       /* BOLT_OPEN_NODAL: a closed point opens on its traction smoothed
+                                         through the nodes; BOLT_OPEN_GAUSS: on its own multiplier */
   PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
   PetscReal          *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
   PetscBool          *active, *activeOld, *activeOlder;
@@ -132,6 +136,9 @@ typedef struct {
   PetscInt            nlocal;         /* length of the local contact vector */
   PetscInt           *localGlobal;    /* its global DOFs */
   Vec                 uc, fc;         /* local contact displacements and forces (sequential) */
+  Vec                 fcWork, fGlobal; /* nodal sums across ranks: local and global layout */
+  PetscReal          *nodalArea;      /* nlocal: sum w N n over all Gauss points (vector area of the node) */
+  PetscReal          *nodalForce, *tau; /* nlocal, and 3 per Gauss point: work space of the opening test */
   VecScatter          scatter;        /* global displacement -> uc */
   PetscReal          *Ke;             /* 576 per element: stiffness of its active Gauss points */
   PetscBool          *dirty;          /* element whose activity changed since its Ke was built */
@@ -221,9 +228,11 @@ typedef struct {
   PetscInt        maxOuter, maxInner;
   PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
   PetscBool       continueOnFailure, monitor;
+  PetscInt        contactMonitor; /* -contact_monitor: 1 a line per outer iteration, 2 also per CG iteration */
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       calibratePreload;
   PetscReal       preloadTarget, preloadScale;
+  PetscBool       calibrating; /* in the preload's dual loop: each outer iteration scales to the target clamping force */
   Mat             K0, Keff;
   KSP             ksp;
   PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */

@@ -28,6 +28,10 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
   c->augmentOption = c->augment;
   PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, c->warmStart, &c->warmStart, NULL));
+  {
+    const char *open[] = {"nodal", "gauss"};
+    PetscCall(PetscOptionsEList("-contact_open_test", "When a closed point opens: nodal (its normal traction smoothed through the nodes, nodal force / nodal area, is tensile beyond the band) or gauss (its own multiplier is)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
+  }
   PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m]", NULL, c->activationGap, &c->activationGap, NULL));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscOptionsEnd();
@@ -355,6 +359,9 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
   PetscCall(PetscFree((*cs)->localGlobal));
   PetscCall(VecDestroy(&(*cs)->uc));
   PetscCall(VecDestroy(&(*cs)->fc));
+  PetscCall(VecDestroy(&(*cs)->fcWork));
+  PetscCall(VecDestroy(&(*cs)->fGlobal));
+  PetscCall(PetscFree3((*cs)->nodalArea, (*cs)->nodalForce, (*cs)->tau));
   PetscCall(VecScatterDestroy(&(*cs)->scatter));
   PetscCall(MatDestroy(&(*cs)->Kc));
   PetscCall(PetscFree(*cs));
@@ -362,6 +369,61 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
 }
 
 /* ------------------------------------------------------------------ contact state */
+
+static PetscErrorCode BoltContactForcesInto(BoltContactSet *, const PetscReal[], Vec);
+
+/* out = the nodal forces sum w N t of a field t (3 per Gauss point) at the local contact DOFs,
+   summed over the elements of every rank (a node on a partition boundary gets both sides). */
+static PetscErrorCode BoltContactSetNodalSum(BoltContactSet *c, const PetscReal t[], PetscReal out[])
+{
+  const PetscScalar *f;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactForcesInto(c, t, c->fcWork));
+  PetscCall(VecZeroEntries(c->fGlobal));
+  PetscCall(VecScatterBegin(c->scatter, c->fcWork, c->fGlobal, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->scatter, c->fcWork, c->fGlobal, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterBegin(c->scatter, c->fGlobal, c->fcWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(c->scatter, c->fGlobal, c->fcWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(c->fcWork, &f));
+  for (PetscInt i = 0; i < c->nlocal; i++) out[i] = PetscRealPart(f[i]);
+  PetscCall(VecRestoreArrayRead(c->fcWork, &f));
+  PetscFunctionReturn(0);
+}
+
+/* The normal traction of the field t (3 per Gauss point) smoothed through the nodes: at each node
+   its normal force over its area (both sums w N over the elements around it), interpolated back
+   to the Gauss point. The multipliers outnumber the nodes four to one, and the part of them that
+   exerts no nodal force is not determined by the discrete problem: near the edge of the contact
+   zone it shows as Gauss-point multipliers of tens of MPa of either sign over a compressed node.
+   The smoothed traction depends only on the forces the multipliers exert. */
+static PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *c, const PetscReal t[], PetscReal tn[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactSetNodalSum(c, t, c->nodalForce));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt *loc = &c->elemLocal[24 * e];
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt         gp = 4 * e + q;
+      const PetscReal *n = &c->gpNormal[3 * gp], *N = &c->gpN[16 * e + 4 * q];
+      PetscReal        sum = 0, wsum = 0;
+      for (PetscInt a = 0; a < 4; a++) {
+        const PetscInt *ii = loc[12 + 3 * a] >= 0 ? &loc[12 + 3 * a] : &loc[3 * a]; /* side b, or a if b is clamped */
+        PetscReal       fn = 0, an = 0;
+        if (ii[0] < 0) continue;                                              /* both sides clamped */
+        for (PetscInt k = 0; k < 3; k++) {
+          fn += c->nodalForce[ii[k]] * n[k];
+          an += c->nodalArea[ii[k]] * n[k];
+        }
+        if (an == 0) continue;
+        sum += N[a] * fn / an;
+        wsum += N[a];
+      }
+      tn[gp] = wsum > 0 ? sum / wsum : 0;
+    }
+  }
+  PetscFunctionReturn(0);
+}
 
 /* Gauss-point data, the local contact vector and its scatter, and the K_c pattern. Every
    Gauss point starts active with zero multipliers (the paper's initial state). */
@@ -403,6 +465,10 @@ PetscErrorCode BoltContactSetSetUpState(BoltContactSet *c, Vec layout)
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, c->localGlobal, PETSC_COPY_VALUES, &isGlobal));
   PetscCall(VecScatterCreate(layout, isGlobal, c->uc, NULL, &c->scatter));
   PetscCall(ISDestroy(&isGlobal));
+  PetscCall(VecDuplicate(c->uc, &c->fcWork));
+  PetscCall(VecDuplicate(layout, &c->fGlobal));
+  PetscCall(PetscMalloc3(n + 1, &c->nodalArea, n + 1, &c->nodalForce, 12 * ne + 1, &c->tau));
+  PetscCall(BoltContactSetNodalSum(c, c->gpNormal, c->nodalArea));
   /* K_c: one COO entry per element matrix entry, fixed pattern of all elements */
   PetscCall(VecGetLocalSize(layout, &m_));
   PetscCall(VecGetSize(layout, &M_));
@@ -514,24 +580,42 @@ PetscErrorCode BoltContactSetAugment(BoltContactSet *c, PetscReal *relChange, Pe
    whether the set equals the one two outer iterations back (cycling between two sets). */
 PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged, PetscBool *cycling)
 {
-  PetscInt loc[3] = {0, 0, 0}, glob[3];
+  PetscInt   loc[3] = {0, 0, 0}, glob[3];
+  PetscReal *tnOpen = NULL; /* the normal traction that decides whether a closed point opens */
 
   PetscFunctionBeginUser;
+  /* the traction of a closed point: the multipliers (converged) with augmentation, the trial
+     traction for the penalty alone; an open point has none */
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt pair = c->elem[e].pair;
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt   gp = 4 * e + q;
+      PetscReal *t  = &c->tau[3 * gp];
+      if (!c->active[gp]) t[0] = t[1] = t[2] = 0;
+      else if (c->augment) PetscCall(PetscArraycpy(t, &c->lambda[3 * gp], 3));
+      else BoltContactTrialTraction(&c->lambda[3 * gp], &c->gap[3 * gp], &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], t);
+    }
+  }
+  PetscCall(PetscMalloc1(4 * c->nelem + 1, &tnOpen));
+  if (c->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tnOpen));
+  else
+    for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+      const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
+      tnOpen[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+    }
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt  gp = 4 * e + q;
-      PetscReal t[3];
       PetscBool now;
-      BoltContactTrialTraction(&c->lambda[3 * gp], &c->gap[3 * gp], &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], t);
       /* A band of width activationGap (or the traction bandTraction) around zero keeps
          points at the edge of the contact zone, whose gaps and tractions are at round-off
          level, from chattering between the sets: a closed point opens when its traction is
          tensile beyond the band, an open point closes when it penetrates beyond it. */
       {
-        const PetscReal *g = &c->gap[3 * gp], *n = &c->gpNormal[3 * gp], *tr = (c->active[gp] && c->augment) ? &c->lambda[3 * gp] : t; /* lambda: the converged traction */
+        const PetscReal *g = &c->gap[3 * gp], *n = &c->gpNormal[3 * gp];
         const PetscReal  band = c->bandTraction[pair];
-        if (c->active[gp]) now = (tr[0] * n[0] + tr[1] * n[1] + tr[2] * n[2]) < band ? PETSC_TRUE : PETSC_FALSE;
+        if (c->active[gp]) now = tnOpen[gp] < band ? PETSC_TRUE : PETSC_FALSE;
         else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > c->activationGap ? PETSC_TRUE : PETSC_FALSE;
       }
       c->activeOlder[gp] = c->activeOld[gp];
@@ -546,6 +630,7 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
       if (now != c->activeOlder[gp]) loc[2]++;
     }
   }
+  PetscCall(PetscFree(tnOpen));
   PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
   *nchanged  = glob[0];
   c->nactive = glob[1];
@@ -564,11 +649,18 @@ PetscErrorCode BoltContactSetForces(BoltContactSet *c)
 
 PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[])
 {
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactForcesInto(c, lambda, c->fc));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltContactForcesInto(BoltContactSet *c, const PetscReal lambda[], Vec fc)
+{
   PetscScalar *f;
 
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(c->fc));
-  PetscCall(VecGetArray(c->fc, &f));
+  PetscCall(VecZeroEntries(fc));
+  PetscCall(VecGetArray(fc, &f));
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt *loc = &c->elemLocal[24 * e];
     for (PetscInt q = 0; q < 4; q++) {
@@ -583,7 +675,7 @@ PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[
         }
     }
   }
-  PetscCall(VecRestoreArray(c->fc, &f));
+  PetscCall(VecRestoreArray(fc, &f));
   PetscFunctionReturn(0);
 }
 

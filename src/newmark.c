@@ -58,6 +58,7 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsInt("-checkpoint_every", "Write a checkpoint every this many steps (0: none); files <-checkpoint_file>-fom.ckpt.h5 and -rom.ckpt.h5", NULL, nm->checkpointEvery, &nm->checkpointEvery, NULL));
   PetscCall(PetscOptionsString("-checkpoint_file", "Base name of the checkpoint files (default: <output_dir>/<output_name>)", NULL, nm->checkpointBase, nm->checkpointBase, sizeof(nm->checkpointBase), NULL));
   PetscCall(PetscOptionsBool("-restart", "Continue each model's transient from its checkpoint (same mesh, ranks, time step; -ts_end may be later)", NULL, nm->restart, &nm->restart, NULL));
+  PetscCall(PetscOptionsInt("-contact_monitor", "Print the contact loop: 1 a line per outer iteration, 2 also per inner CG iteration", NULL, nm->contactMonitor, &nm->contactMonitor, NULL));
   PetscOptionsEnd();
   PetscCheck(nm->checkpointEvery >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every must be >= 0 (got %" PetscInt_FMT ")", nm->checkpointEvery);
   if (nm->checkpointEvery > 0) PetscCall(BoltMakeParentDir(comm, nm->checkpointBase)); /* fail now, not at the first checkpoint */
@@ -301,6 +302,27 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
     PetscCall(BoltContactSetPenetration(c, r, &pen));
     nm->lastChange      = rel;
     nm->lastPenetration = pen;
+    if (nm->contactMonitor > 1) {
+      PetscReal rrN, trueRes = 0, drift = 0;
+      PetscCall(BoltContactSetDot(c, r, r, &rrN));
+      if (inner % 10 == 0) { /* the true residual: gaps of the current q, and of a fresh solve */
+        PetscReal *tg, dd, tt;
+        Vec        qt;
+        PetscCall(PetscMalloc1(ng + 1, &tg));
+        PetscCall(VecDuplicate(nm->q, &qt));
+        PetscCall(BoltSolveWithForces(nm, rhs0, c->lambda, qt));
+        PetscCall(BoltGapsOf(nm, qt, tg));
+        PetscCall(VecDestroy(&qt));
+        PetscCall(BoltContactSetPenetration(c, tg, &tt));
+        for (PetscInt k = 0; k < ng; k++) Ap[k] = tg[k] - r[k];
+        PetscCall(BoltContactSetDot(c, Ap, Ap, &dd));
+        PetscCall(BoltContactSetDot(c, tg, tg, &tt));
+        trueRes = PetscSqrtReal(tt / rr0);
+        drift   = PetscSqrtReal(dd / rr0);
+        PetscCall(PetscFree(tg));
+      }
+      PetscCall(PetscPrintf(nm->op->comm, "    CG %4" PetscInt_FMT " rel %.3e |r|/|r0| %.3e true %.3e drift %.3e pen %.3e alpha %.3e\n", inner, (double)rel, (double)PetscSqrtReal(rrN / rr0), (double)trueRes, (double)drift, (double)pen, (double)alpha));
+    }
     /* a reduced model may have fewer DOFs than contact constraints: there the penetration
        cannot vanish everywhere, and the loop ends when the gaps (the dual residual) have dropped
        by the tolerance, or the reduced forces stop changing */
@@ -318,6 +340,139 @@ static PetscErrorCode BoltInnerCG(BoltNewmark *nm, Vec rhs0, PetscInt *ninner)
      (zeroed elsewhere), and an inactive point must be able to close again */
   PetscCall(BoltGapsOf(nm, nm->q, c->gap));
   *ninner = inner;
+  PetscFunctionReturn(0);
+}
+
+/* Diagnostics of one outer iteration: points opened / closed per pair, the distance from the
+   pair's centroid (the bolt axis for the joint) of the points that changed, and the largest
+   distance of an active point (the edge of the contact zone). */
+static PetscErrorCode BoltContactMonitorOuter(BoltNewmark *nm, PetscInt outer, PetscInt inner, PetscInt nchanged, PetscBool cycling)
+{
+  BoltContactSet *c = nm->op->contact;
+  const PetscInt  P = BOLTROM_MAX_PAIRS;
+  PetscInt        cnt[2 * BOLTROM_MAX_PAIRS];
+  PetscReal       ctr[3 * BOLTROM_MAX_PAIRS], rmin[BOLTROM_MAX_PAIRS], rmax[2 * BOLTROM_MAX_PAIRS];
+
+  PetscFunctionBeginUser;
+  for (PetscInt p = 0; p < 2 * P; p++) {
+    cnt[p]  = 0;
+    rmax[p] = 0;
+  }
+  for (PetscInt p = 0; p < P; p++) rmin[p] = PETSC_MAX_REAL;
+  for (PetscInt p = 0; p < 3 * P; p++) ctr[p] = 0;
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt q = 0; q < 4; q++)
+      for (PetscInt a = 0; a < 4; a++)
+        for (PetscInt d = 0; d < 3; d++) ctr[3 * c->elem[e].pair + d] += c->gpW[4 * e + q] * c->gpN[16 * e + 4 * q + a] * c->elem[e].Xa[3 * a + d] / c->areaPerPair[c->elem[e].pair];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ctr, 3 * P, MPIU_REAL, MPI_SUM, nm->op->comm));
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt  gp = 4 * e + q, p = c->elem[e].pair;
+      PetscReal x[3] = {0, 0, 0}, r;
+      for (PetscInt a = 0; a < 4; a++)
+        for (PetscInt d = 0; d < 3; d++) x[d] += c->gpN[16 * e + 4 * q + a] * c->elem[e].Xa[3 * a + d];
+      r = PetscSqrtReal(PetscSqr(x[0] - ctr[3 * p]) + PetscSqr(x[1] - ctr[3 * p + 1]));
+      if (c->active[gp]) rmax[P + p] = PetscMax(rmax[P + p], r);
+      if (c->active[gp] == c->activeOld[gp]) continue;
+      cnt[2 * p + (c->active[gp] ? 1 : 0)]++;
+      rmin[p] = PetscMin(rmin[p], r);
+      rmax[p] = PetscMax(rmax[p], r);
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2 * P, MPIU_INT, MPI_SUM, nm->op->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rmin, P, MPIU_REAL, MPI_MIN, nm->op->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rmax, 2 * P, MPIU_REAL, MPI_MAX, nm->op->comm));
+  PetscCall(PetscPrintf(nm->op->comm, "  %s step %" PetscInt_FMT " outer %3" PetscInt_FMT ": inner %4" PetscInt_FMT " change %.3e pen %.3e | changed %" PetscInt_FMT " active %" PetscInt_FMT "%s |", nm->op->name, nm->step, outer, inner, (double)nm->lastChange, (double)nm->lastPenetration, nchanged, c->nactive, cycling ? " CYCLING" : ""));
+  for (PetscInt p = 0; p < c->npairs; p++)
+    if (cnt[2 * p] || cnt[2 * p + 1]) PetscCall(PetscPrintf(nm->op->comm, " %s -%" PetscInt_FMT " +%" PetscInt_FMT " at r %.2f..%.2f mm, active to %.2f mm;", c->pairName[p], cnt[2 * p], cnt[2 * p + 1], (double)(1e3 * rmin[p]), (double)(1e3 * rmax[p]), (double)(1e3 * rmax[P + p])));
+  PetscCall(PetscPrintf(nm->op->comm, "\n"));
+  PetscFunctionReturn(0);
+}
+
+/* Diagnostics before an active-set update: the active points whose multiplier is tensile beyond
+   the band (they are about to open), and for them the normal traction smoothed through the
+   nodes (nodal normal force / nodal area, interpolated back to the Gauss point): a multiplier
+   that exerts a tensile force shows it in both, a spurious one in the first only. */
+static PetscErrorCode BoltContactMonitorTension(BoltNewmark *nm)
+{
+  BoltContactSet    *c  = nm->op->contact;
+  PetscInt           nl = c->nlocal, cnt[2] = {0, 0};
+  PetscReal         *fl, *fa, *nrm, mx[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, mn = PETSC_MAX_REAL;
+  const PetscScalar *f;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc3(nl + 1, &fl, nl + 1, &fa, 12 * c->nelem + 1, &nrm));
+  PetscCall(BoltContactSetForcesOf(c, c->lambda));
+  PetscCall(VecGetArrayRead(c->fc, &f));
+  for (PetscInt i = 0; i < nl; i++) fl[i] = PetscRealPart(f[i]);
+  PetscCall(VecRestoreArrayRead(c->fc, &f));
+  PetscCall(PetscArraycpy(nrm, c->gpNormal, 12 * c->nelem));
+  PetscCall(BoltContactSetForcesOf(c, nrm));
+  PetscCall(VecGetArrayRead(c->fc, &f));
+  for (PetscInt i = 0; i < nl; i++) fa[i] = PetscRealPart(f[i]);
+  PetscCall(VecRestoreArrayRead(c->fc, &f));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt  *loc = &c->elemLocal[24 * e];
+    const PetscReal  band = c->epsN[c->elem[e].pair] * c->activationGap;
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt         gp = 4 * e + q;
+      const PetscReal *n = &c->gpNormal[3 * gp], *l = &c->lambda[3 * gp], *N = &c->gpN[16 * e + 4 * q];
+      PetscReal        ln = l[0] * n[0] + l[1] * n[1] + l[2] * n[2], ps = 0;
+      if (!c->active[gp]) continue;
+      for (PetscInt a = 0; a < 4; a++) {
+        PetscReal fn = 0, an = 0, sg = 1;
+        const PetscInt *ii = &loc[12 + 3 * a];
+        if (ii[0] < 0) {
+          ii = &loc[3 * a];
+          sg = -1;
+        }
+        for (PetscInt k = 0; k < 3; k++) {
+          fn += sg * fl[ii[k]] * n[k];
+          an += sg * fa[ii[k]] * n[k];
+        }
+        ps += N[a] * fn / an;
+      }
+      mx[2] = PetscMax(mx[2], ps);
+      if (ln < band) continue;
+      cnt[0]++;
+      if (ps < 0) cnt[1]++;
+      mx[0] = PetscMax(mx[0], ln);
+      mx[1] = PetscMax(mx[1], ps);
+      mn    = PetscMin(mn, ps);
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, nm->op->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, nm->op->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &mn, 1, MPIU_REAL, MPI_MIN, nm->op->comm));
+  PetscCall(PetscPrintf(nm->op->comm, "    tension: %" PetscInt_FMT " active points with lambda_n >= band (max %.3e Pa); their nodal-smoothed traction %.3e..%.3e Pa, compressive at %" PetscInt_FMT "; max smoothed over the active set %.3e Pa\n", cnt[0], (double)mx[0], (double)mn, (double)mx[1], cnt[1], (double)mx[2]));
+  PetscCall(PetscFree3(fl, fa, nrm));
+  PetscFunctionReturn(0);
+}
+
+/* The preload layers bound an elastic element layer of the stud, which takes part of the
+   applied force; the clamping force is what a preload means. With zero initial gaps and a fixed
+   active set the static contact problem is linear in the load, so scaling the solution, the
+   multipliers, the gaps and the preload vector by target / transmitted is exact. It is done
+   after every inner solve of the preload, before the active set is updated: the activation band
+   is absolute (metres, pascals), so the set must be judged on the tractions of the calibrated
+   preload, not on those of the applied layer forces (about 15 times smaller for the joint). */
+static PetscErrorCode BoltPreloadCalibrate(BoltNewmark *nm, Vec rhs0)
+{
+  BoltContactSet *c = nm->op->contact;
+  PetscReal       force[BOLTROM_MAX_PAIRS], fmax = 0, scale;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactSetNormalForcePerPair(c, force));
+  for (PetscInt p = 0; p < c->npairs; p++) fmax = PetscMax(fmax, PetscAbsReal(force[p]));
+  PetscCheck(fmax > 0, nm->op->comm, PETSC_ERR_USER_INPUT, "The preload transmits no contact force: check the preload groups and the bolt axis (-preload_axis)");
+  scale = nm->preloadTarget / fmax;
+  nm->preloadScale *= scale;
+  PetscCall(VecScale(nm->q, scale));
+  PetscCall(VecScale(nm->op->preload, scale));
+  if (rhs0 != nm->op->preload) PetscCall(VecScale(rhs0, scale));
+  for (PetscInt k = 0; k < 12 * c->nelem; k++) {
+    c->lambda[k] *= scale;
+    c->gap[k] *= scale;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -340,7 +495,10 @@ static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor
     if (nm->inner == 1 && c->augment) PetscCall(BoltInnerCG(nm, rhs0, &inner));
     else PetscCall(BoltInnerUzawa(nm, rhs0, &inner));
     innerTotal += inner;
+    if (nm->calibrating) PetscCall(BoltPreloadCalibrate(nm, rhs0));
+    if (nm->contactMonitor > 0 && c->augment) PetscCall(BoltContactMonitorTension(nm));
     PetscCall(BoltContactSetUpdateActive(c, &nchanged, &cycling));
+    if (nm->contactMonitor > 0) PetscCall(BoltContactMonitorOuter(nm, outer, inner, nchanged, cycling));
     if (!nchanged) break;
     refactor = PETSC_TRUE;
     if (cycling || outer >= nm->maxOuter) {
@@ -372,27 +530,14 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
   nm->op->contact->augment = nm->op->augment; /* the contact set serves FOM and ROM: this model's law */
   PetscCall(BoltNewmarkSetK0(nm, PETSC_FALSE));
   nm->step = 0;
+  nm->preloadScale = 1.0;
+  nm->calibrating  = (nm->calibratePreload && nm->preloadTarget > 0 && !nm->staticWithLoad) ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(VecCopy(nm->op->preload, nm->rhs));
   if (nm->staticWithLoad) PetscCall(VecAXPY(nm->rhs, 1.0, nm->op->load));
   PetscCall(BoltDualLoop(nm, nm->rhs, PETSC_TRUE, &nout, &nin));
   nm->staticOuter = nout;
   nm->staticInner = nin;
-  /* The preload layers bound an elastic element layer of the stud, which takes part of the
-     applied force; the clamping force is what a preload means. With zero initial gaps the
-     static contact problem is positively homogeneous in the load, so scaling the solution,
-     the multipliers and the preload vector by target / transmitted is exact. */
-  if (nm->calibratePreload && nm->preloadTarget > 0 && !nm->staticWithLoad) {
-    BoltContactSet *c = nm->op->contact;
-    PetscReal       force[BOLTROM_MAX_PAIRS], fmax = 0, scale;
-    PetscCall(BoltContactSetNormalForcePerPair(c, force));
-    for (PetscInt p = 0; p < c->npairs; p++) fmax = PetscMax(fmax, PetscAbsReal(force[p]));
-    PetscCheck(fmax > 0, nm->op->comm, PETSC_ERR_USER_INPUT, "The preload transmits no contact force: check the preload groups and the bolt axis (-preload_axis)");
-    scale = nm->preloadTarget / fmax;
-    nm->preloadScale = scale;
-    PetscCall(VecScale(nm->q, scale));
-    PetscCall(VecScale(nm->op->preload, scale));
-    for (PetscInt k = 0; k < 12 * c->nelem; k++) c->lambda[k] *= scale;
-  }
+  nm->calibrating = PETSC_FALSE;
   PetscCall(VecZeroEntries(nm->v));
   PetscCall(VecZeroEntries(nm->acc));
   PetscFunctionReturn(0);
