@@ -337,29 +337,41 @@ PetscErrorCode BoltMeshGroupPoints(BoltMesh *m, const char name[], PetscBool own
 /* Vertices in the closure of every point of a group; unique, sorted; owned ones only if asked. */
 PetscErrorCode BoltMeshGroupVertices(BoltMesh *m, const char name[], PetscBool ownedOnly, PetscInt *nv, PetscInt **verts)
 {
-  PetscInt np, *pts, n = 0, cap = 64, *v;
+  PetscInt  np, *pts, n = 0, npt = m->pEnd - m->pStart, *v;
+  PetscInt *mark, *markRoot;
 
   PetscFunctionBeginUser;
   PetscCall(BoltMeshGroupPoints(m, name, PETSC_FALSE, &np, &pts));
-  PetscCall(PetscMalloc1(cap, &v));
+  PetscCall(PetscCalloc2(npt + 1, &mark, npt + 1, &markRoot));
   for (PetscInt j = 0; j < np; j++) {
     PetscInt *cl = NULL, ncl;
 
     PetscCall(DMPlexGetTransitiveClosure(m->dm, pts[j], PETSC_TRUE, &ncl, &cl));
     for (PetscInt k = 0; k < ncl; k++) {
       PetscInt q = cl[2 * k];
-      if (q < m->vStart || q >= m->vEnd) continue;
-      if (ownedOnly && PetscBTLookup(m->pointGhost, q - m->pStart)) continue;
-      if (n == cap) {
-        cap *= 2;
-        PetscCall(PetscRealloc(sizeof(PetscInt) * cap, &v));
-      }
-      v[n++] = q;
+      if (q >= m->vStart && q < m->vEnd) mark[q - m->pStart] = 1;
     }
     PetscCall(DMPlexRestoreTransitiveClosure(m->dm, pts[j], PETSC_TRUE, &ncl, &cl));
   }
   PetscCall(PetscFree(pts));
-  PetscCall(PetscSortRemoveDupsInt(&n, v));
+  if (ownedOnly) {
+    /* A vertex on the rim of the group can be owned by a rank that holds none of the group's
+       faces (only a neighbouring cell): send the marks of ghost copies to the owners, or the
+       vertex would be counted by no rank (the result would then depend on the partition). */
+    PetscSF sf;
+    PetscCall(DMGetPointSF(m->dm, &sf));
+    PetscCall(PetscArraycpy(markRoot, mark, npt));
+    PetscCall(PetscSFReduceBegin(sf, MPIU_INT, mark, markRoot, MPI_MAX));
+    PetscCall(PetscSFReduceEnd(sf, MPIU_INT, mark, markRoot, MPI_MAX));
+    PetscCall(PetscArraycpy(mark, markRoot, npt));
+  }
+  for (PetscInt q = m->vStart; q < m->vEnd; q++)
+    if (mark[q - m->pStart] && !(ownedOnly && PetscBTLookup(m->pointGhost, q - m->pStart))) n++;
+  PetscCall(PetscMalloc1(n + 1, &v));
+  n = 0;
+  for (PetscInt q = m->vStart; q < m->vEnd; q++)
+    if (mark[q - m->pStart] && !(ownedOnly && PetscBTLookup(m->pointGhost, q - m->pStart))) v[n++] = q;
+  PetscCall(PetscFree2(mark, markRoot));
   *nv    = n;
   *verts = v;
   PetscFunctionReturn(0);
