@@ -132,6 +132,24 @@ def test_contact_pairs_match_node_to_node(joint):
         assert np.isin(m.nodes("contact_%s_b" % pair), m.nodes(pb)).all()
 
 
+@pytest.mark.parametrize("level", [0.6, 0.7, 0.8, 1.3, 1.5])
+def test_contact_pairs_match_at_other_levels(tmp_path, level):
+    """Between the published levels too (0.7: the stress sweep's refused level), the two
+    sides of every pair have the same nodes, coincident and distinct, face by face."""
+    _, rep, m = write_joint(tmp_path, level)
+    for pair in PAIRS:
+        Fa, Fb = m.conn["contact_%s_a" % pair], m.conn["contact_%s_b" % pair]
+        na, nb = m.nodes("contact_%s_a" % pair), m.nodes("contact_%s_b" % pair)
+        assert len(na) == len(nb) > 0, (level, pair, len(na), len(nb))
+        assert Fa.shape == Fb.shape, (level, pair)
+        assert np.abs(m.xyz[Fa] - m.xyz[Fb]).max() < 1e-12, (level, pair)
+        assert len(np.intersect1d(na, nb)) == 0, (level, pair)
+        Xa, Xb = m.xyz[na], m.xyz[nb]
+        Xa, Xb = Xa[np.lexsort(Xa.T)], Xb[np.lexsort(Xb.T)]
+        assert np.abs(Xa - Xb).max() < 1e-12, (level, pair)
+        assert rep["contact_dofs_per_pair"][pair] == 6 * len(na)
+
+
 def test_contact_areas(joint):
     _, rep, m = joint
     N = rep["divisions"]["n_theta"]
