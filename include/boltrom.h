@@ -158,6 +158,7 @@ PetscErrorCode BoltContactSetScatter(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetGaps(BoltContactSet *);
 PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
 PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[]);
+PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, const PetscReal[], PetscReal[]);
 PetscErrorCode BoltContactSetDot(BoltContactSet *, const PetscReal[], const PetscReal[], PetscReal *);
 PetscErrorCode BoltContactSetPenetration(BoltContactSet *, PetscReal[], PetscReal *);
 PetscErrorCode BoltContactSetAugment(BoltContactSet *, PetscReal *, PetscReal *);

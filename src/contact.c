@@ -397,7 +397,7 @@ static PetscErrorCode BoltContactSetNodalSum(BoltContactSet *c, const PetscReal 
    exerts no nodal force is not determined by the discrete problem: near the edge of the contact
    zone it shows as Gauss-point multipliers of tens of MPa of either sign over a compressed node.
    The smoothed traction depends only on the forces the multipliers exert. */
-static PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *c, const PetscReal t[], PetscReal tn[])
+PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *c, const PetscReal t[], PetscReal tn[])
 {
   PetscFunctionBeginUser;
   PetscCall(BoltContactSetNodalSum(c, t, c->nodalForce));

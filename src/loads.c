@@ -121,22 +121,18 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
   /* a surface group spreads the force by area; a point group takes it whole */
   PetscCall(BoltMeshGroupPoints(m, l->loadGroup, PETSC_TRUE, &nfaces, &faces));
   {
-    PetscInt fStart, fEnd;
+    PetscInt fStart, fEnd, n2 = 0;
     PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
     for (PetscInt k = 0; k < nfaces; k++)
-      if (faces[k] >= fStart && faces[k] < fEnd) hasFaces = 1;
+      if (faces[k] >= fStart && faces[k] < fEnd) faces[n2++] = faces[k];
+    nfaces   = n2;
+    hasFaces = nfaces > 0;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hasFaces, 1, MPIU_INT, MPI_MAX, m->comm));
   /* the pattern of a 1 N load, then scaled: a reduced model keeps the pattern */
   PetscCall(VecDuplicate(layout, &l->loadUnit));
   PetscCall(VecZeroEntries(l->loadUnit));
-  if (hasFaces) {
-    PetscInt fStart, fEnd, n2 = 0;
-    PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
-    for (PetscInt k = 0; k < nfaces; k++)
-      if (faces[k] >= fStart && faces[k] < fEnd) faces[n2++] = faces[k];
-    PetscCall(BoltLoadFaces(m, n2, faces, l->loadDirection, 1.0, l->loadUnit));
-  }
+  if (hasFaces) PetscCall(BoltLoadFaces(m, nfaces, faces, l->loadDirection, 1.0, l->loadUnit));
   else PetscCall(BoltLoadSpread(m, l->loadGroup, l->loadDirection, 1.0, l->loadUnit, &n));
   {
     PetscReal nrm;

@@ -365,10 +365,7 @@ PetscErrorCode BoltMeshGroupVertices(BoltMesh *m, const char name[], PetscBool o
     PetscCall(PetscSFReduceEnd(sf, MPIU_INT, mark, markRoot, MPI_MAX));
     PetscCall(PetscArraycpy(mark, markRoot, npt));
   }
-  for (PetscInt q = m->vStart; q < m->vEnd; q++)
-    if (mark[q - m->pStart] && !(ownedOnly && PetscBTLookup(m->pointGhost, q - m->pStart))) n++;
-  PetscCall(PetscMalloc1(n + 1, &v));
-  n = 0;
+  PetscCall(PetscMalloc1(m->vEnd - m->vStart + 1, &v));
   for (PetscInt q = m->vStart; q < m->vEnd; q++)
     if (mark[q - m->pStart] && !(ownedOnly && PetscBTLookup(m->pointGhost, q - m->pStart))) v[n++] = q;
   PetscCall(PetscFree2(mark, markRoot));

@@ -394,43 +394,20 @@ static PetscErrorCode BoltContactMonitorOuter(BoltNewmark *nm, PetscInt outer, P
    that exerts a tensile force shows it in both, a spurious one in the first only. */
 static PetscErrorCode BoltContactMonitorTension(BoltNewmark *nm)
 {
-  BoltContactSet    *c  = nm->op->contact;
-  PetscInt           nl = c->nlocal, cnt[2] = {0, 0};
-  PetscReal         *fl, *fa, *nrm, mx[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, mn = PETSC_MAX_REAL;
-  const PetscScalar *f;
+  BoltContactSet *c = nm->op->contact;
+  PetscInt        cnt[2] = {0, 0};
+  PetscReal      *ts, mx[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, mn = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc3(nl + 1, &fl, nl + 1, &fa, 12 * c->nelem + 1, &nrm));
-  PetscCall(BoltContactSetForcesOf(c, c->lambda));
-  PetscCall(VecGetArrayRead(c->fc, &f));
-  for (PetscInt i = 0; i < nl; i++) fl[i] = PetscRealPart(f[i]);
-  PetscCall(VecRestoreArrayRead(c->fc, &f));
-  PetscCall(PetscArraycpy(nrm, c->gpNormal, 12 * c->nelem));
-  PetscCall(BoltContactSetForcesOf(c, nrm));
-  PetscCall(VecGetArrayRead(c->fc, &f));
-  for (PetscInt i = 0; i < nl; i++) fa[i] = PetscRealPart(f[i]);
-  PetscCall(VecRestoreArrayRead(c->fc, &f));
+  PetscCall(PetscMalloc1(4 * c->nelem + 1, &ts));
+  PetscCall(BoltContactSetSmoothedNormalTraction(c, c->lambda, ts));
   for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscInt  *loc = &c->elemLocal[24 * e];
-    const PetscReal  band = c->epsN[c->elem[e].pair] * c->activationGap;
+    const PetscReal band = c->bandTraction[c->elem[e].pair];
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt         gp = 4 * e + q;
-      const PetscReal *n = &c->gpNormal[3 * gp], *l = &c->lambda[3 * gp], *N = &c->gpN[16 * e + 4 * q];
-      PetscReal        ln = l[0] * n[0] + l[1] * n[1] + l[2] * n[2], ps = 0;
+      const PetscReal *n = &c->gpNormal[3 * gp], *l = &c->lambda[3 * gp];
+      PetscReal        ln = l[0] * n[0] + l[1] * n[1] + l[2] * n[2], ps = ts[gp];
       if (!c->active[gp]) continue;
-      for (PetscInt a = 0; a < 4; a++) {
-        PetscReal fn = 0, an = 0, sg = 1;
-        const PetscInt *ii = &loc[12 + 3 * a];
-        if (ii[0] < 0) {
-          ii = &loc[3 * a];
-          sg = -1;
-        }
-        for (PetscInt k = 0; k < 3; k++) {
-          fn += sg * fl[ii[k]] * n[k];
-          an += sg * fa[ii[k]] * n[k];
-        }
-        ps += N[a] * fn / an;
-      }
       mx[2] = PetscMax(mx[2], ps);
       if (ln < band) continue;
       cnt[0]++;
@@ -444,7 +421,7 @@ static PetscErrorCode BoltContactMonitorTension(BoltNewmark *nm)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, nm->op->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &mn, 1, MPIU_REAL, MPI_MIN, nm->op->comm));
   PetscCall(PetscPrintf(nm->op->comm, "    tension: %" PetscInt_FMT " active points with lambda_n >= band (max %.3e Pa); their nodal-smoothed traction %.3e..%.3e Pa, compressive at %" PetscInt_FMT "; max smoothed over the active set %.3e Pa\n", cnt[0], (double)mx[0], (double)mn, (double)mx[1], cnt[1], (double)mx[2]));
-  PetscCall(PetscFree3(fl, fa, nrm));
+  PetscCall(PetscFree(ts));
   PetscFunctionReturn(0);
 }
 
