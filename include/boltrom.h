@@ -298,6 +298,13 @@ typedef struct {
   PetscBool       augment;       /* contact law of the reduced dual loop */
   PetscReal       orthogonality; /* max |V'V - I|, or -1 if not measured */
   char            fingerprint[2048];
+  /* the FOM's preloaded state (offline): multipliers per newton of preload and the active set,
+     per local contact element; the reduced dual loop starts from them and keeps them frozen */
+  PetscBool       preloadState;
+  PetscReal      *lambda0;       /* 12 per local contact element, per N of preload */
+  PetscBool      *active0;       /* 4 per local contact element */
+  PetscReal       penaltyScale;  /* the ROM's penalties: this times the FOM's */
+  PetscReal       epsSaved[2 * BOLTROM_MAX_PAIRS];
 } BoltROM;
 
 typedef struct {
@@ -309,6 +316,8 @@ typedef struct {
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
   PetscBool  checkOrthogonality;
   PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */
+  PetscBool  preloadState, preloadStateSet; /* -rom_preload_state */
+  PetscReal  penaltyScale;                  /* -rom_contact_penalty_scale, or 0 for the default */
 } BoltReductionOptions;
 
 PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);
@@ -319,6 +328,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **);
 PetscErrorCode BoltROMFingerprint(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscInt, PetscReal, PetscReal, PetscInt, PetscInt, char[], size_t);
 PetscErrorCode BoltROMSave(BoltROM *, BV, BoltAssembler *, BoltLoadSet *, const char[], const char[]);
 PetscErrorCode BoltROMLoad(const char[], const char[], BoltReductionOptions *, BoltContactSet *, BoltLoadSet *, BoltROM **, PetscBool *, char[], size_t);
+PetscErrorCode BoltROMSetPreloadState(BoltROM *, BoltNewmark *, PetscReal);
 PetscErrorCode BoltROMCheckAtS0(BoltROM *, BoltOperator *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscReal *);
 PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *);
 

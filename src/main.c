@@ -349,6 +349,7 @@ static PetscErrorCode BoltRun(void)
     PetscCall(BoltNewmarkSetFromOptions(romNm));
     romNm->preloadTarget = loads->hasPreload ? loads->preloadForce : 0;
     PetscCall(BoltNewmarkSetUp(romNm));
+    PetscCall(BoltROMSetPreloadState(rom, romNm, loads->preloadForce));
     PetscCall(PetscLogStagePush(boltLog.stagePreload));
     PetscCall(BoltNewmarkPreload(romNm));
     PetscCall(PetscLogStagePop());
@@ -518,6 +519,8 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONReal(&j, "offline_interface_s", rom->tInterface));
       PetscCall(BoltJSONReal(&j, "offline_projection_s", rom->tProject));
       PetscCall(BoltJSONString(&j, "contact_law", rom->augment ? "augmented" : "penalty"));
+      PetscCall(BoltJSONInt(&j, "preload_state", rom->preloadState));
+      PetscCall(BoltJSONReal(&j, "contact_penalty_scale", rom->penaltyScale));
       PetscCall(BoltJSONInt(&j, "steps", romNm->nsteps));
       PetscCall(BoltJSONReal(&j, "online_s", romNm->tOnline));
       PetscCall(BoltJSONReal(&j, "contact_stiffness_s", romNm->tContactStiffness));

@@ -468,7 +468,8 @@ static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor
     PetscBool cycling;
 
     if (refactor) PetscCall(BoltNewmarkFactor(nm));
-    if (!c->warmStart) PetscCall(PetscArrayzero(c->lambda, 12 * c->nelem));
+    /* under the penalty law the multipliers are not unknowns (zero, or a ROM's frozen preload) */
+    if (!c->warmStart && c->augment) PetscCall(PetscArrayzero(c->lambda, 12 * c->nelem));
     if (nm->inner == 1 && c->augment) PetscCall(BoltInnerCG(nm, rhs0, &inner));
     else PetscCall(BoltInnerUzawa(nm, rhs0, &inner));
     innerTotal += inner;

@@ -22,7 +22,12 @@ PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOp
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   o->augment = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
+  o->preloadState = PETSC_TRUE;
+  PetscCall(PetscOptionsBool("-rom_preload_state", "ROM with the penalty law: start from the FOM's preloaded state, solved offline (its displacement and its closed-contact load response join the basis; its multipliers stay frozen online, the penalty carries the increments)", NULL, o->preloadState, &o->preloadState, &o->preloadStateSet));
+  o->penaltyScale = 0;
+  PetscCall(PetscOptionsReal("-rom_contact_penalty_scale", "The ROM's contact penalties as a multiple of the FOM's (default: 20 with -rom_preload_state against an augmented FOM, else 1)", NULL, o->penaltyScale, &o->penaltyScale, NULL));
   PetscOptionsEnd();
+  PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
   PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
   if (o->file[0]) PetscCall(BoltMakeParentDir(comm, o->file)); /* fail now, not after the offline phase */
   PetscFunctionReturn(0);
@@ -162,6 +167,74 @@ static PetscErrorCode BoltProjectVec(BV V, Vec f, Vec *fr)
   PetscFunctionReturn(0);
 }
 
+/* The FOM's static preloaded equilibrium, offline: q0, the multipliers (per newton of preload)
+   and the active set, then the static response to the scene's load from that state with the
+   contact closed by the augmented Lagrangian. The interface-reduced ROM cannot close its gaps
+   (fewer DOFs than constraints), so under the penalty law alone it penetrates by micrometres
+   under the clamp and starts from a tilted state; with q0 in its basis and the FOM's multipliers
+   frozen it starts exactly where the FOM does, and the load response gives it one gap-free
+   shape, which lets a stiffer penalty carry the increments without locking. */
+static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, Vec *q0, Vec *dqLoad, Vec *preload)
+{
+  BoltOperator *op;
+  BoltNewmark  *nm;
+  PetscReal     F = loads->preloadForce;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactSetResetState(c));
+  PetscCall(BoltFOMCreate(asmb, c, loads, &op));
+  /* the calibration scales the preload vector: work on a copy, the scene's stays as it is */
+  PetscCall(VecDestroy(&op->preload));
+  PetscCall(VecDuplicate(loads->preload, &op->preload));
+  PetscCall(VecCopy(loads->preload, op->preload));
+  PetscCall(BoltNewmarkCreate(op, &nm));
+  PetscCall(BoltNewmarkSetFromOptions(nm));
+  nm->preloadTarget = F;
+  PetscCall(BoltNewmarkSetUp(nm));
+  PetscCall(BoltNewmarkPreload(nm));
+  PetscCall(VecDuplicate(nm->q, q0));
+  PetscCall(VecCopy(nm->q, *q0));
+  PetscCall(VecDuplicate(op->preload, preload));
+  PetscCall(VecCopy(op->preload, *preload));
+  PetscCall(PetscMalloc2(12 * c->nelem + 1, &rom->lambda0, 4 * c->nelem + 1, &rom->active0));
+  for (PetscInt k = 0; k < 12 * c->nelem; k++) rom->lambda0[k] = c->lambda[k] / F;
+  PetscCall(PetscArraycpy(rom->active0, c->active, 4 * c->nelem));
+  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (offline): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", (double)nm->staticOuter, (double)nm->staticInner, c->nactive, c->ngpGlobal));
+  /* the load on top, from the preloaded state (multipliers warm, active set free to change) */
+  nm->staticWithLoad = PETSC_TRUE;
+  PetscCall(BoltNewmarkPreload(nm));
+  PetscCall(VecDuplicate(nm->q, dqLoad));
+  PetscCall(VecWAXPY(*dqLoad, -1.0, *q0, nm->q));
+  PetscCall(PetscPrintf(rom->comm, "; load response %g inner iterations\n", (double)nm->staticInner));
+  PetscCall(BoltNewmarkDestroy(&nm));
+  PetscCall(BoltFOMDestroy(&op));
+  PetscCall(BoltContactSetResetState(c));
+  rom->preloadState = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* Appends vectors to the basis, orthonormalised against it; dependent ones are dropped. */
+static PetscErrorCode BoltBasisAppend(BV V, PetscInt nv, Vec v[], PetscInt *added)
+{
+  PetscInt k, j = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(BVGetSizes(V, NULL, NULL, &k));
+  PetscCall(BVResize(V, k + nv, PETSC_TRUE));
+  for (PetscInt i = 0; i < nv; i++) {
+    PetscReal nrm;
+    PetscBool dep;
+    PetscCall(BVSetActiveColumns(V, 0, k + j + 1));
+    PetscCall(BVInsertVec(V, k + j, v[i]));
+    PetscCall(BVOrthonormalizeColumn(V, k + j, PETSC_TRUE, &nrm, &dep));
+    if (!dep) j++;
+  }
+  if (j < nv) PetscCall(BVResize(V, k + j, PETSC_TRUE));
+  PetscCall(BVSetActiveColumns(V, 0, k + j));
+  *added = j;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM **romp)
 {
   BoltROM       *rom;
@@ -169,6 +242,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   BoltInterface *ir = NULL;
   BV             B, V;
   Mat            C;
+  Vec            preloadCalibrated = NULL; /* the preload layer forces that clamp with -preload_force */
   PetscLogDouble t0, t1, t2, t3;
 
   PetscFunctionBeginUser;
@@ -184,6 +258,12 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(BoltKrylovCreate(o->comm, &kry));
   PetscCall(BoltKrylovSetFromOptions(kry));
   PetscCall(BoltROMFingerprint(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, rom->fingerprint, sizeof(rom->fingerprint)));
+  /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
+  rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && loads->hasPreload && loads->preloadForce != 0);
+  PetscCheck(!(o->preloadStateSet && o->preloadState) || rom->preloadState, o->comm, PETSC_ERR_USER_INPUT, "-rom_preload_state needs a ROM with the penalty law (interface reduction, -rom_contact_augment false) and a nonzero bolt preload");
+  /* against a FOM that closes its gaps, the increments want a stiffer penalty than the paper's (measured: README) */
+  rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augmentOption ? 20.0 : 1.0);
+  if (rom->preloadState) PetscCall(PetscStrlcat(rom->fingerprint, "; preload state", sizeof(rom->fingerprint)));
   if (o->file[0]) {
     PetscBool exists, matched;
     char      why[256];
@@ -195,6 +275,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         PetscCall(PetscTime(&t3));
         loaded->tOffline = t3 - t0;
         loaded->augment  = rom->augment;
+        loaded->penaltyScale = rom->penaltyScale;
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
         PetscCall(BoltKrylovDestroy(&kry));
@@ -232,6 +313,16 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(BoltKrylovBuild(kry, asmb->M, C, asmb->K, B, &V));
   PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
   PetscCall(BoltInterfaceDestroy(&ir)); /* its factorisations are not needed from here on */
+  if (rom->preloadState) {
+    Vec      extra[2];
+    PetscInt added;
+    PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
+    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, &extra[0], &extra[1], &preloadCalibrated));
+    PetscCall(BoltBasisAppend(V, 2, extra, &added));
+    PetscCall(VecDestroy(&extra[0]));
+    PetscCall(VecDestroy(&extra[1]));
+    PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
+  }
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;
@@ -253,7 +344,8 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(BoltProject(V, asmb->K, &rom->Kr));
   PetscCall(BoltProjectVec(V, loads->load, &rom->loadr));
   PetscCall(BoltProjectVec(V, loads->loadUnit, &rom->loadUnitr));
-  PetscCall(BoltProjectVec(V, loads->preload, &rom->preloadr));
+  PetscCall(BoltProjectVec(V, preloadCalibrated ? preloadCalibrated : loads->preload, &rom->preloadr));
+  PetscCall(VecDestroy(&preloadCalibrated));
   PetscCall(BoltROMExtractRows(rom, V, loads));
   PetscCall(PetscLogEventEnd(boltLog.projection, 0, 0, 0, 0));
   PetscCall(PetscTime(&t3));
@@ -298,6 +390,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->Vprobe));
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscFree3(rom->work, rom->work2, rom->dK));
+  PetscCall(PetscFree2(rom->lambda0, rom->active0));
   PetscCall(PetscFree(*romp));
   PetscFunctionReturn(0);
 }

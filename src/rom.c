@@ -134,6 +134,13 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   op->contactForces        = ROMContactForces;
   op->contactStiffness     = ROMContactStiffness;
   op->probe                = ROMProbe;
+  /* the ROM's own penalties, restored when the operator goes */
+  for (PetscInt p = 0; p < rom->contact->npairs; p++) {
+    rom->epsSaved[2 * p]     = rom->contact->epsN[p];
+    rom->epsSaved[2 * p + 1] = rom->contact->epsT[p];
+    rom->contact->epsN[p] *= rom->penaltyScale;
+    rom->contact->epsT[p] *= rom->penaltyScale;
+  }
   /* K_cr starts empty with every element due for an update */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
@@ -152,12 +159,40 @@ PetscErrorCode BoltROMOperatorDestroy(BoltOperator **opp)
 
   PetscFunctionBeginUser;
   if (!op) PetscFunctionReturn(0);
+  {
+    BoltROM *rom = (BoltROM *)op->ctx;
+    for (PetscInt p = 0; p < rom->contact->npairs; p++) {
+      rom->contact->epsN[p] = rom->epsSaved[2 * p];
+      rom->contact->epsT[p] = rom->epsSaved[2 * p + 1];
+    }
+  }
   PetscCall(MatDestroy(&op->M));
   PetscCall(MatDestroy(&op->C));
   PetscCall(MatDestroy(&op->K));
   PetscCall(VecDestroy(&op->load));
   PetscCall(VecDestroy(&op->preload));
   PetscCall(PetscFree(*opp));
+  PetscFunctionReturn(0);
+}
+
+/* Start the reduced dual loop from the FOM's preloaded state: its multipliers (scaled to this
+   preload: with a fixed active set the static contact problem is linear in it) and its active
+   set. They stay frozen (penalty law), so the preload vector is used as built, uncalibrated. */
+PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal preloadForce)
+{
+  BoltContactSet *c = rom->contact;
+  PetscInt        nact = 0;
+
+  PetscFunctionBeginUser;
+  if (!rom->preloadState) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < 12 * c->nelem; k++) c->lambda[k] = rom->lambda0[k] * preloadForce;
+  for (PetscInt g = 0; g < 4 * c->nelem; g++) {
+    c->active[g] = c->activeOld[g] = c->activeOlder[g] = rom->active0[g];
+    if (rom->active0[g]) nact++;
+  }
+  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
+  PetscCall(MPIU_Allreduce(&nact, &c->nactive, 1, MPIU_INT, MPI_SUM, rom->comm));
+  nm->calibratePreload = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
