@@ -89,7 +89,7 @@ def test_help_lists_options():
                 "-rayleigh_alpha", "-rayleigh_beta", "-contact_penalty_factor", "-load_group", "-load_force",
                 "-preload_force", "-probe_group", "-output_dir", "-summary", "-modal_nev", "-static_ksp_type",
                 "-modal_eps_nev", "-ts_dt", "-contact_inner", "-krylov_order", "-krylov_s0", "-rom_n_ccm", "-rom_file",
-                "-rom_contact_augment", "-export_matrices"):
+                "-rom_contact_augment", "-rom_preload_state", "-rom_contact_penalty_scale", "-export_matrices"):
         assert opt in proc.stdout, opt
 
 
@@ -114,6 +114,15 @@ def test_malformed_scene_file(beam, tmp_path):
 def test_bad_time_step(joint_small, tmp_path, args, words):
     mesh, _ = joint_small
     expect_error(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-fom"] + args, tmp_path, *words)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["-rom_n_ccm", "0", "-rom_n_jim", "0", "-rom_preload_state", "true"], ["-rom_preload_state", "penalty law"]),
+    (["-rom_contact_penalty_scale", "-2"], ["-rom_contact_penalty_scale", "> 0"]),
+])
+def test_bad_rom_contact_options(joint_small, tmp_path, args, words):
+    mesh, _ = joint_small
+    expect_error(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-rom", "-ts_end", "5e-4"] + args, tmp_path, *words)
 
 
 def test_reduction_larger_than_interface(joint_small, tmp_path):
