@@ -375,5 +375,13 @@ PetscErrorCode BoltJSONClose(BoltJSON *);
 PetscErrorCode BoltMakeDir(MPI_Comm, const char[]);
 PetscErrorCode BoltMakeParentDir(MPI_Comm, const char[]);
 PetscErrorCode BoltHDF5WriteValues(PetscViewer, MPI_Comm, const char[], PetscInt, PetscInt, const PetscScalar[], PetscBool);
+PetscErrorCode BoltReadAll(PetscViewer, MPI_Comm, const char[], PetscInt *, PetscReal **);
+/* Sorted keys of a keyed dataset and the permutation to their rows. */
+typedef struct {
+  PetscInt  n, *key, *row;
+} BoltKeyIndex;
+PetscErrorCode BoltKeyIndexCreate(PetscInt, const PetscReal[], BoltKeyIndex *);
+PetscErrorCode BoltKeyIndexFind(BoltKeyIndex *, PetscInt, PetscInt *);
+PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *);
 
 #endif

@@ -46,66 +46,6 @@ static PetscErrorCode BoltCheckpointFileName(BoltNewmark *nm, char file[], size_
   PetscFunctionReturn(0);
 }
 
-/* A whole dataset on every rank (freed by the caller). */
-static PetscErrorCode BoltReadAll(PetscViewer v, MPI_Comm comm, const char name[], PetscInt *n, PetscReal **x)
-{
-  Vec                w, all;
-  VecScatter         sc;
-  const PetscScalar *a;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecCreate(comm, &w));
-  PetscCall(PetscObjectSetName((PetscObject)w, name));
-  PetscCall(VecLoad(w, v));
-  PetscCall(VecScatterCreateToAll(w, &sc, &all));
-  PetscCall(VecScatterBegin(sc, w, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, w, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetSize(all, n));
-  PetscCall(PetscMalloc1(*n + 1, x));
-  PetscCall(VecGetArrayRead(all, &a));
-  for (PetscInt i = 0; i < *n; i++) (*x)[i] = PetscRealPart(a[i]);
-  PetscCall(VecRestoreArrayRead(all, &a));
-  PetscCall(VecScatterDestroy(&sc));
-  PetscCall(VecDestroy(&all));
-  PetscCall(VecDestroy(&w));
-  PetscFunctionReturn(0);
-}
-
-/* Sorted keys of a keyed dataset and the permutation to their rows. */
-typedef struct {
-  PetscInt  n, *key, *row;
-} BoltKeyIndex;
-
-static PetscErrorCode BoltKeyIndexCreate(PetscInt n, const PetscReal keys[], BoltKeyIndex *ix)
-{
-  PetscFunctionBeginUser;
-  ix->n = n;
-  PetscCall(PetscMalloc2(n + 1, &ix->key, n + 1, &ix->row));
-  for (PetscInt i = 0; i < n; i++) {
-    ix->key[i] = (PetscInt)keys[i];
-    ix->row[i] = i;
-  }
-  PetscCall(PetscSortIntWithArray(n, ix->key, ix->row));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode BoltKeyIndexFind(BoltKeyIndex *ix, PetscInt key, PetscInt *row)
-{
-  PetscInt loc;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscFindInt(key, ix->n, ix->key, &loc));
-  *row = loc >= 0 ? ix->row[loc] : -1;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *ix)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFree2(ix->key, ix->row));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
 {
   BoltOperator   *op   = nm->op;

@@ -34,7 +34,7 @@ PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLo
 
   PetscFunctionBeginUser;
   PetscCall(BoltFileHash(m->comm, m->filename, &h));
-  PetscCall(PetscSNPrintf(fp, len, "format 4; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
+  PetscCall(PetscSNPrintf(fp, len, "format 5; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
   for (PetscInt p = 0; p < m->nparts; p++) {
     const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
     PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g %.6g %.6g", m->partName[p], (double)mat->E, (double)mat->nu, (double)mat->rho));
@@ -127,100 +127,51 @@ static PetscErrorCode BoltPointRows(BoltMesh *m, BV V, const char group[], Petsc
   PetscFunctionReturn(0);
 }
 
-/* Partition-independent keys of the local contact elements: the vertex numbers (as read) of
-   nodes 0, 1, 2 of side a, which fix the element and the order of its Gauss points. */
-static PetscErrorCode BoltContactElementKeys(BoltContactSet *c, Vec layout, PetscInt **ekeys)
-{
-  Vec                keys, ckeys;
-  const PetscScalar *k;
+/* The preloaded contact state, per contact element keyed by its face a in the mesh as read
+   (as in checkpoints): 12 multipliers per newton of preload, then 4 active flags. */
+#define BOLT_ROM_STATE 16
 
-  PetscFunctionBeginUser;
-  PetscCall(BoltMeshDofKeys(c->mesh, layout, &keys));
-  PetscCall(VecDuplicate(c->uc, &ckeys));
-  PetscCall(VecScatterBegin(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(PetscMalloc1(3 * c->nelem + 1, ekeys));
-  PetscCall(VecGetArrayRead(ckeys, &k));
-  for (PetscInt e = 0; e < c->nelem; e++)
-    for (PetscInt a = 0; a < 3; a++) {
-      PetscInt loc = c->elemLocal[24 * e + 3 * a];
-      (*ekeys)[3 * e + a] = loc >= 0 ? (PetscInt)PetscRealPart(k[loc]) / 3 : -1;
-    }
-  PetscCall(VecRestoreArrayRead(ckeys, &k));
-  PetscCall(VecDestroy(&ckeys));
-  PetscCall(VecDestroy(&keys));
-  PetscFunctionReturn(0);
-}
-
-/* The preloaded contact state: per local element its keys, multipliers and active flags. */
-static PetscErrorCode BoltROMSavePreloadState(BoltROM *rom, BoltLoadSet *loads, PetscViewer v)
+static PetscErrorCode BoltROMSavePreloadState(BoltROM *rom, PetscViewer v)
 {
   BoltContactSet *c = rom->contact;
-  PetscInt       *ekeys;
-  const char     *names[] = {"state_keys", "state_lambda0", "state_active0"};
-  const PetscInt  bs[]    = {3, 12, 4};
+  PetscScalar    *buf;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltContactElementKeys(c, loads->load, &ekeys));
-  for (PetscInt d = 0; d < 3; d++) {
-    Vec          w;
-    PetscScalar *x;
-    PetscCall(VecCreateMPI(rom->comm, bs[d] * c->nelem, PETSC_DETERMINE, &w));
-    PetscCall(VecSetBlockSize(w, bs[d]));
-    PetscCall(PetscObjectSetName((PetscObject)w, names[d]));
-    PetscCall(VecGetArray(w, &x));
-    for (PetscInt i = 0; i < bs[d] * c->nelem; i++) x[i] = d == 0 ? (PetscScalar)ekeys[i] : d == 1 ? rom->lambda0[i] : (rom->active0[i] ? 1.0 : 0.0);
-    PetscCall(VecRestoreArray(w, &x));
-    PetscCall(VecView(w, v));
-    PetscCall(VecDestroy(&w));
+  PetscCall(PetscMalloc1(BOLT_ROM_STATE * c->nelem + 1, &buf));
+  for (PetscInt e = 0; e < c->nelem; e++) buf[e] = c->elem[e].key;
+  PetscCall(BoltHDF5WriteValues(v, rom->comm, "state_keys", c->nelem, 1, buf, PETSC_FALSE));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    for (PetscInt i = 0; i < 12; i++) buf[BOLT_ROM_STATE * e + i] = rom->lambda0[12 * e + i];
+    for (PetscInt i = 0; i < 4; i++) buf[BOLT_ROM_STATE * e + 12 + i] = rom->active0[4 * e + i] ? 1.0 : 0.0;
   }
-  PetscCall(PetscFree(ekeys));
+  PetscCall(BoltHDF5WriteValues(v, rom->comm, "state", BOLT_ROM_STATE * c->nelem, 1, buf, PETSC_FALSE));
+  PetscCall(PetscFree(buf));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, BoltLoadSet *loads, PetscViewer v, const char file[])
+static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, PetscViewer v, const char file[])
 {
-  PetscInt     ne, *ekeys, *first, *perm;
-  PetscScalar *keys, *lam, *act;
-  Vec          w;
+  PetscInt     n;
+  PetscReal   *keys, *x;
+  BoltKeyIndex ix;
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreate(PETSC_COMM_SELF, &w));
-  PetscCall(PetscObjectSetName((PetscObject)w, "state_keys"));
-  PetscCall(VecLoad(w, v));
-  PetscCall(VecGetSize(w, &ne));
-  PetscCall(VecDestroy(&w));
-  ne /= 3;
-  PetscCall(PetscMalloc3(3 * ne + 1, &keys, 12 * ne + 1, &lam, 4 * ne + 1, &act));
-  PetscCall(BoltReadArray(v, "state_keys", ne, 3, keys));
-  PetscCall(BoltReadArray(v, "state_lambda0", ne, 12, lam));
-  PetscCall(BoltReadArray(v, "state_active0", ne, 4, act));
-  PetscCall(PetscMalloc2(ne + 1, &first, ne + 1, &perm));
-  for (PetscInt i = 0; i < ne; i++) {
-    first[i] = (PetscInt)PetscRealPart(keys[3 * i]);
-    perm[i]  = i;
-  }
-  PetscCall(PetscSortIntWithArray(ne, first, perm));
-  PetscCall(BoltContactElementKeys(c, loads->load, &ekeys));
+  PetscCall(BoltReadAll(v, rom->comm, "state_keys", &n, &keys));
+  PetscCall(BoltKeyIndexCreate(n, keys, &ix));
+  PetscCall(PetscFree(keys));
+  PetscCall(BoltReadAll(v, rom->comm, "state", &n, &x));
+  PetscCheck(n == BOLT_ROM_STATE * ix.n, rom->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged (preloaded state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements): rebuild it with -rom_rebuild", file, n, ix.n);
   PetscCall(PetscMalloc2(12 * c->nelem + 1, &rom->lambda0, 4 * c->nelem + 1, &rom->active0));
   for (PetscInt e = 0; e < c->nelem; e++) {
-    PetscInt loc, found = -1;
-    PetscCall(PetscFindInt(ekeys[3 * e], ne, first, &loc));
-    if (loc >= 0) {
-      while (loc > 0 && first[loc - 1] == ekeys[3 * e]) loc--; /* several elements share node 0 */
-      for (; loc < ne && first[loc] == ekeys[3 * e] && found < 0; loc++) {
-        PetscInt i = perm[loc];
-        if ((PetscInt)PetscRealPart(keys[3 * i + 1]) == ekeys[3 * e + 1] && (PetscInt)PetscRealPart(keys[3 * i + 2]) == ekeys[3 * e + 2]) found = i;
-      }
-    }
-    PetscCheck(found >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for the contact element at vertices %" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ": rebuild it with -rom_rebuild", file, ekeys[3 * e], ekeys[3 * e + 1], ekeys[3 * e + 2]);
-    for (PetscInt k = 0; k < 12; k++) rom->lambda0[12 * e + k] = PetscRealPart(lam[12 * found + k]);
-    for (PetscInt k = 0; k < 4; k++) rom->active0[4 * e + k] = PetscRealPart(act[4 * found + k]) != 0 ? PETSC_TRUE : PETSC_FALSE;
+    PetscInt row;
+    PetscCall(BoltKeyIndexFind(&ix, c->elem[e].key, &row));
+    PetscCheck(row >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for contact element %" PetscInt_FMT ": rebuild it with -rom_rebuild", file, c->elem[e].key);
+    for (PetscInt i = 0; i < 12; i++) rom->lambda0[12 * e + i] = x[BOLT_ROM_STATE * row + i];
+    for (PetscInt i = 0; i < 4; i++) rom->active0[4 * e + i] = x[BOLT_ROM_STATE * row + 12 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
   }
   rom->preloadState = PETSC_TRUE;
-  PetscCall(PetscFree(ekeys));
-  PetscCall(PetscFree2(first, perm));
-  PetscCall(PetscFree3(keys, lam, act));
+  PetscCall(BoltKeyIndexDestroy(&ix));
+  PetscCall(PetscFree(x));
   PetscFunctionReturn(0);
 }
 
@@ -332,7 +283,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
     PetscCall(BoltHDF5WriteValues(v, comm, "Vpoints", 3 * npts * n, n, rows, PETSC_TRUE));
     PetscCall(PetscFree(rows));
   }
-  if (rom->preloadState) PetscCall(BoltROMSavePreloadState(rom, loads, v));
+  if (rom->preloadState) PetscCall(BoltROMSavePreloadState(rom, v));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "fingerprint", PETSC_STRING, fingerprint));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, groups));
@@ -513,7 +464,7 @@ PetscErrorCode BoltROMLoad(const char file[], const char fingerprint[], BoltRedu
   {
     char *has;
     PetscCall(PetscStrstr(fingerprint, "; preload state", &has));
-    if (has) PetscCall(BoltROMLoadPreloadState(rom, c, loads, v, file));
+    if (has) PetscCall(BoltROMLoadPreloadState(rom, c, v, file));
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscFree(groups));
