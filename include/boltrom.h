@@ -231,6 +231,7 @@ typedef struct {
   PetscBool       continueOnFailure, monitor;
   PetscInt        contactMonitor; /* -contact_monitor: 1 a line per outer iteration, 2 also per CG iteration */
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
+  PetscBool       keepStaticActiveSet; /* the static solve keeps the given active set (a ROM started from the FOM's state) */
   PetscBool       calibratePreload;
   PetscReal       preloadTarget, preloadScale;
   PetscBool       calibrating; /* in the preload's dual loop: each outer iteration scales to the target clamping force */
@@ -288,7 +289,7 @@ typedef struct {
   Vec             loadUnitr;         /* V' (1 N load pattern), kept in the ROM file */
   PetscScalar    *Vc;                /* nlocal x n, column-major: rows of V at contact->localGlobal */
   PetscReal      *Vprobe;            /* n: the probe row of V */
-  PetscReal      *Ke;                /* 576 per local contact element: the matrix inside Kcr */
+  PetscReal      *Ke;                /* 144 per local contact element: M_e of K_e = [M_e -M_e; -M_e M_e] inside Kcr */
   PetscScalar    *work, *work2, *dK; /* scratch */
   BoltContactSet *contact;
   /* offline figures */
@@ -302,8 +303,10 @@ typedef struct {
      per local contact element; the reduced dual loop starts from them and keeps them frozen */
   PetscBool       preloadState;
   PetscReal      *lambda0;       /* 12 per local contact element, per N of preload */
+  PetscReal      *gap0;          /* the gaps of that state, likewise */
   PetscBool      *active0;       /* 4 per local contact element */
   PetscReal       penaltyScale;  /* the ROM's penalties: this times the FOM's */
+  PetscInt        nClosed;       /* closed-contact Krylov vectors in the basis */
   PetscReal       epsSaved[2 * BOLTROM_MAX_PAIRS];
 } BoltROM;
 
@@ -318,6 +321,7 @@ typedef struct {
   PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */
   PetscBool  preloadState, preloadStateSet; /* -rom_preload_state */
   PetscReal  penaltyScale;                  /* -rom_contact_penalty_scale, or 0 for the default */
+  PetscInt   nClosed;                       /* -rom_closed_krylov */
 } BoltReductionOptions;
 
 PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);

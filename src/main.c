@@ -521,6 +521,7 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONString(&j, "contact_law", rom->augment ? "augmented" : "penalty"));
       PetscCall(BoltJSONInt(&j, "preload_state", rom->preloadState));
       PetscCall(BoltJSONReal(&j, "contact_penalty_scale", rom->penaltyScale));
+      PetscCall(BoltJSONInt(&j, "closed_krylov", rom->nClosed));
       PetscCall(BoltJSONInt(&j, "steps", romNm->nsteps));
       PetscCall(BoltJSONReal(&j, "online_s", romNm->tOnline));
       PetscCall(BoltJSONReal(&j, "contact_stiffness_s", romNm->tContactStiffness));

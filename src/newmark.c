@@ -475,6 +475,7 @@ static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor
     innerTotal += inner;
     if (nm->calibrating) PetscCall(BoltPreloadCalibrate(nm, rhs0));
     if (nm->contactMonitor > 0 && c->augment) PetscCall(BoltContactMonitorTension(nm));
+    if (nm->keepStaticActiveSet && !nm->dynamic) break;
     PetscCall(BoltContactSetUpdateActive(c, &nchanged, &cycling));
     if (nm->contactMonitor > 0) PetscCall(BoltContactMonitorOuter(nm, outer, inner, nchanged, cycling));
     if (!nchanged) break;

@@ -1,7 +1,7 @@
 /* The reduced-order operator: small dense matrices on every rank, solved redundantly with
    LAPACK (cheaper than broadcasting the solution), and the contact DOFs reached through the
    rows of the basis: u_c = V_c q_r, F_r = V_c' f_c summed over ranks, and
-   K_cr = sum_e V_e' K_e V_e updated only for elements whose active points changed. */
+   K_cr = sum_e V_e' K_e V_e (as D_e' M_e D_e) updated only for elements whose active points changed. */
 #include "boltrom.h"
 #include <petscblaslapack.h>
 
@@ -53,28 +53,33 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
   BoltROM        *rom = (BoltROM *)op->ctx;
   BoltContactSet *c   = rom->contact;
   PetscInt        n = rom->n, changed = 0, any;
-  PetscBLASInt    bn, b24 = 24;
-  PetscScalar     one = 1.0, zero = 0.0, *Ve = rom->work, *T = rom->work2, *dK = rom->dK, *K;
+  PetscBLASInt    bn, b12 = 12;
+  PetscScalar     one = 1.0, zero = 0.0, *De = rom->work, *T = rom->work2, *dK = rom->dK, *K;
   PetscReal       Knew[576];
 
   PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(n, &bn));
   for (PetscInt e = 0; e < c->nelem; e++) {
-    PetscScalar delta[576];
+    PetscScalar delta[144];
     if (!c->dirty[e]) continue;
+    /* K_e = [M -M; -M M] (B = [-N, N]), so V_e' K_e V_e = D_e' M D_e with D_e = V_b - V_a, the
+       relative displacements of the node pairs. Forming D_e first keeps the directions that open
+       no gap exact: through K_e their round-off would be eps_N |V|^2 u, which under a near-hard
+       penalty outweighs the joint's soft stiffness and makes the history depend on the partition */
     PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], &c->active[4 * e], Knew));
-    for (PetscInt k = 0; k < 576; k++) {
-      delta[k]              = Knew[k] - rom->Ke[576 * e + k];
-      rom->Ke[576 * e + k] = Knew[k];
-    }
+    for (PetscInt a = 0; a < 12; a++)
+      for (PetscInt b = 0; b < 12; b++) {
+        delta[12 * a + b]          = Knew[24 * a + b] - rom->Ke[144 * e + 12 * a + b];
+        rom->Ke[144 * e + 12 * a + b] = Knew[24 * a + b];
+      }
     c->dirty[e] = PETSC_FALSE;
-    for (PetscInt k = 0; k < 24; k++) {
-      PetscInt loc = c->elemLocal[24 * e + k];
-      for (PetscInt j = 0; j < n; j++) Ve[k + 24 * j] = loc >= 0 ? rom->Vc[loc + c->nlocal * j] : 0.0;
+    for (PetscInt k = 0; k < 12; k++) {
+      PetscInt la = c->elemLocal[24 * e + k], lb = c->elemLocal[24 * e + 12 + k];
+      for (PetscInt j = 0; j < n; j++) De[k + 12 * j] = (lb >= 0 ? rom->Vc[lb + c->nlocal * j] : 0.0) - (la >= 0 ? rom->Vc[la + c->nlocal * j] : 0.0);
     }
     if (!changed) PetscCall(PetscArrayzero(dK, n * n));
-    PetscCallBLAS("BLASgemm", BLASgemm_("N", "N", &b24, &bn, &b24, &one, delta, &b24, Ve, &b24, &zero, T, &b24));
-    PetscCallBLAS("BLASgemm", BLASgemm_("T", "N", &bn, &bn, &b24, &one, Ve, &b24, T, &b24, &one, dK, &bn));
+    PetscCallBLAS("BLASgemm", BLASgemm_("N", "N", &b12, &bn, &b12, &one, delta, &b12, De, &b12, &zero, T, &b12));
+    PetscCallBLAS("BLASgemm", BLASgemm_("T", "N", &bn, &bn, &b12, &one, De, &b12, T, &b12, &one, dK, &bn));
     changed++;
   }
   PetscCall(MPIU_Allreduce(&changed, &any, 1, MPIU_INT, MPI_SUM, rom->comm));
@@ -145,9 +150,9 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
   PetscCall(PetscFree(rom->Ke));
-  PetscCall(PetscCalloc1(576 * rom->contact->nelem + 1, &rom->Ke));
+  PetscCall(PetscCalloc1(144 * rom->contact->nelem + 1, &rom->Ke));
   PetscCall(PetscFree3(rom->work, rom->work2, rom->dK));
-  PetscCall(PetscMalloc3(24 * n + 1, &rom->work, 24 * n + 1, &rom->work2, n * n + 1, &rom->dK));
+  PetscCall(PetscMalloc3(12 * n + 1, &rom->work, 12 * n + 1, &rom->work2, n * n + 1, &rom->dK));
   for (PetscInt e = 0; e < rom->contact->nelem; e++) rom->contact->dirty[e] = PETSC_TRUE;
   *opp = op;
   PetscFunctionReturn(0);
@@ -177,7 +182,8 @@ PetscErrorCode BoltROMOperatorDestroy(BoltOperator **opp)
 
 /* Start the reduced dual loop from the FOM's preloaded state: its multipliers (scaled to this
    preload: with a fixed active set the static contact problem is linear in it) and its active
-   set. They stay frozen (penalty law), so the preload vector is used as built, uncalibrated. */
+   set. They stay frozen (penalty law), so the preload vector is used as built, uncalibrated.
+   Call after BoltROMOperatorCreate, which sets the ROM's penalties. */
 PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal preloadForce)
 {
   BoltContactSet *c = rom->contact;
@@ -185,7 +191,21 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
 
   PetscFunctionBeginUser;
   if (!rom->preloadState) PetscFunctionReturn(0);
-  for (PetscInt k = 0; k < 12 * c->nelem; k++) c->lambda[k] = rom->lambda0[k] * preloadForce;
+  /* The FOM's traction at its preloaded state is lambda0 + P g0 (its penalty P on the residual
+     gaps g0 its loop leaves); the ROM's penalty is s P, so the frozen multipliers take
+     lambda0 - (s - 1) P g0: the ROM's traction there is the FOM's, its penalty acts on increments */
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt pair = c->elem[e].pair;
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt  gp = 4 * e + q;
+      PetscReal lam[3], g[3];
+      for (PetscInt k = 0; k < 3; k++) {
+        lam[k] = rom->lambda0[3 * gp + k] * preloadForce;
+        g[k]   = -(1 - 1 / rom->penaltyScale) * rom->gap0[3 * gp + k] * preloadForce;
+      }
+      BoltContactTrialTraction(lam, g, &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], &c->lambda[3 * gp]);
+    }
+  }
   for (PetscInt g = 0; g < 4 * c->nelem; g++) {
     c->active[g] = c->activeOld[g] = c->activeOlder[g] = rom->active0[g];
     if (rom->active0[g]) nact++;
@@ -193,6 +213,10 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
   for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
   PetscCall(MPIU_Allreduce(&nact, &c->nactive, 1, MPIU_INT, MPI_SUM, rom->comm));
   nm->calibratePreload = PETSC_FALSE;
+  /* the static state is the FOM's by construction: its active set is not judged again there
+     (under the ROM's stiffer penalty, points at the rim whose traction is within the band of
+     zero would open on gap differences of a fraction of a nanometre) */
+  nm->keepStaticActiveSet = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 

@@ -53,13 +53,14 @@ def test_rom_with_interface_reduction(joint_small, tmp_path):
     r = s["rom"]
     print("ROM (CCM+JIM 100+100, order 2) against FOM:", s["errors"]["load_point"], "dim", r["dim"])
     assert 0 < r["n_ccm"] <= 100 and 0 < r["n_jim"] <= 100
-    # the Krylov vectors, then the FOM's preloaded displacement and its closed-contact load response
-    assert r["inputs"] == r["n_ccm"] + r["n_jim"] + 2 and r["dim"] <= 2 * r["inputs"] + 2
+    # the Krylov vectors, then the FOM's preloaded displacement, its closed-contact load response
+    # and three closed-contact Krylov vectors
+    assert r["inputs"] == r["n_ccm"] + r["n_jim"] + 2 and r["dim"] <= 2 * r["inputs"] + 5
     assert r["orthogonality"] < 1e-12
     # fewer reduced DOFs than contact constraints: the reduced dual loop uses the penalty law
     assert r["contact_law"] == "penalty" and r["failures"] == 0
-    assert r["preload_state"] == 1 and r["contact_penalty_scale"] == 20
-    assert s["errors"]["load_point"]["e_L2"] < 5e-3  # measured 1.1e-3 (README)
+    assert r["preload_state"] == 1 and r["closed_krylov"] == 3 and r["contact_penalty_scale"] == 500
+    assert s["errors"]["load_point"]["e_L2"] < 2e-3  # measured 4.4e-4 (README)
 
 
 def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
@@ -76,16 +77,19 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
         fom, rom = f["/fom/probe"][...], f["/rom/probe"][...]
     scale = np.abs(fom).max()
     print("preloaded probe: FOM", fom[0], "ROM", rom[0], "; e_L2", s["errors"]["load_point"]["e_L2"])
-    # the penalty law alone started 7 times further down (README): the state is the FOM's now
-    assert abs(rom[0] - fom[0]) <= 1e-5 * scale
-    assert s["errors"]["load_point"]["e_L2"] < 5e-3  # measured 3.2e-3 (paper: 3.5e-3 at its level)
+    # the penalty law alone started 7 times further down (README): the state is the FOM's now, to
+    # the round-off of the reduced system under its near-hard penalty (measured 5.6e-6 of the scale)
+    assert abs(rom[0] - fom[0]) <= 5e-5 * scale
+    assert s["errors"]["load_point"]["e_L2"] < 4e-3  # measured 2.7e-3 (paper: 3.5e-3 at its level)
     for ranks in (1, 3):
         d = tmp_path / f"np{ranks}"
         s = run_summary(common + ["-rom_file", rom_file, "-output_dir", d, "-partitioner", "simple"], d, ranks=ranks)
         assert s["rom"]["source"] == "file"
         with h5py.File(d / "joint.h5") as f:
             other = f["/rom/probe"][...]
-        assert np.abs(other - rom).max() <= 1e-8 * scale, ranks
+        # a state matched to the wrong elements is off by percents; what is left is round-off, which
+        # the near-hard penalty (condition number ~1e9) lifts to 3e-8..7e-8 of the scale (README)
+        assert np.abs(other - rom).max() <= 1e-6 * scale, ranks
 
 
 def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path):
