@@ -63,9 +63,9 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
     PetscScalar delta[144];
     if (!c->dirty[e]) continue;
     /* K_e = [M -M; -M M] (B = [-N, N]), so V_e' K_e V_e = D_e' M D_e with D_e = V_b - V_a, the
-       relative displacements of the node pairs. Forming D_e first keeps the directions that open
-       no gap exact: through K_e their round-off would be eps_N |V|^2 u, which under a near-hard
-       penalty outweighs the joint's soft stiffness and makes the history depend on the partition */
+       relative displacements of the node pairs. Forming D_e first spares the directions that open
+       no gap the penalty's round-off (through K_e it would be about eps_N |V|^2 u, large under a
+       near-hard penalty against the joint's soft stiffness) */
     PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], &c->active[4 * e], Knew));
     for (PetscInt a = 0; a < 12; a++)
       for (PetscInt b = 0; b < 12; b++) {
