@@ -215,11 +215,16 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(VecWAXPY(extra[1], -1.0, extra[0], nm->q));
   PetscCall(PetscPrintf(rom->comm, "; load response %g inner iterations\n", (double)nm->staticInner));
   /* closed-contact Krylov vectors: w_k = static response, from the preloaded state, to M w_(k-1)
-     scaled to the load's norm, so the basis holds the closed joint's low-frequency shapes too */
+     scaled to the load's norm, so the basis holds the closed joint's low-frequency shapes too;
+     at most 1e-3 of the preload's norm, so that a large scene load does not open the joint here
+     (the shapes are those of the closed joint, and their scale is lost in the orthonormalisation) */
   if (nClosed > 0) {
     Vec       f;
-    PetscReal nload, nf;
+    PetscReal nload, npre, nf;
     PetscCall(VecNorm(op->load, NORM_2, &nload));
+    PetscCall(VecNorm(op->preload, NORM_2, &npre));
+    PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)PetscMin(nload, 1e-3 * npre), (double)nload, (double)npre));
+    nload = PetscMin(nload, 1e-3 * npre);
     PetscCall(VecDuplicate(op->load, &f));
     PetscCall(VecDestroy(&op->load));
     op->load = f;
