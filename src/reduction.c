@@ -220,11 +220,11 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
      (the shapes are those of the closed joint, and their scale is lost in the orthonormalisation) */
   if (nClosed > 0) {
     Vec       f;
-    PetscReal nload, npre, nf;
+    PetscReal nload, npre, nforce, nf;
     PetscCall(VecNorm(op->load, NORM_2, &nload));
     PetscCall(VecNorm(op->preload, NORM_2, &npre));
-    PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)PetscMin(nload, 1e-3 * npre), (double)nload, (double)npre));
-    nload = PetscMin(nload, 1e-3 * npre);
+    nforce = PetscMin(nload, 1e-3 * npre);
+    PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)nforce, (double)nload, (double)npre));
     PetscCall(VecDuplicate(op->load, &f));
     PetscCall(VecDestroy(&op->load));
     op->load = f;
@@ -232,7 +232,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
       PetscCall(MatMult(asmb->M, extra[1 + k], f));
       PetscCall(VecNorm(f, NORM_2, &nf));
       PetscCheck(nf > 0, rom->comm, PETSC_ERR_NOT_CONVERGED, "closed-contact Krylov vector %" PetscInt_FMT " is zero", k + 1);
-      PetscCall(VecScale(f, (nload > 0 ? nload : 1.0) / nf));
+      PetscCall(VecScale(f, (nforce > 0 ? nforce : 1.0) / nf));
       PetscCall(BoltNewmarkPreload(nm));
       PetscCall(VecDuplicate(nm->q, &extra[2 + k]));
       PetscCall(VecWAXPY(extra[2 + k], -1.0, extra[0], nm->q));
@@ -300,10 +300,12 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augmentOption ? (o->nClosed > 0 ? 500.0 : 20.0) : 1.0);
   rom->nClosed = rom->preloadState ? o->nClosed : 0;
   if (rom->preloadState) {
-    char closed[64];
     PetscCall(PetscStrlcat(rom->fingerprint, "; preload state", sizeof(rom->fingerprint)));
-    PetscCall(PetscSNPrintf(closed, sizeof(closed), "; closed-contact Krylov %" PetscInt_FMT, o->nClosed));
-    if (o->nClosed > 0) PetscCall(PetscStrlcat(rom->fingerprint, closed, sizeof(rom->fingerprint)));
+    if (o->nClosed > 0) {
+      char closed[64];
+      PetscCall(PetscSNPrintf(closed, sizeof(closed), "; closed-contact Krylov %" PetscInt_FMT, o->nClosed));
+      PetscCall(PetscStrlcat(rom->fingerprint, closed, sizeof(rom->fingerprint)));
+    }
   }
   if (o->file[0]) {
     PetscBool exists, matched;
