@@ -132,6 +132,7 @@ typedef struct {
   PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
   PetscReal          *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
   PetscBool          *active, *activeOld, *activeOlder;
+  PetscBool           closeOnly; /* anti-cycling (the dual loop): points may close but not open */
   PetscInt           *elemLocal;      /* 24 per element: index in the local contact vector, -1 if clamped */
   PetscInt            nlocal;         /* length of the local contact vector */
   PetscInt           *localGlobal;    /* its global DOFs */
@@ -163,6 +164,7 @@ PetscErrorCode BoltContactSetDot(BoltContactSet *, const PetscReal[], const Pets
 PetscErrorCode BoltContactSetPenetration(BoltContactSet *, PetscReal[], PetscReal *);
 PetscErrorCode BoltContactSetAugment(BoltContactSet *, PetscReal *, PetscReal *);
 PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *, PetscInt *, PetscBool *);
+PetscErrorCode BoltContactSetCloseCycle(BoltContactSet *, PetscInt *);
 PetscErrorCode BoltContactSetForces(BoltContactSet *);
 PetscErrorCode BoltContactSetStiffness(BoltContactSet *, Mat *);
 PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *, PetscReal[]);
@@ -229,6 +231,7 @@ typedef struct {
   PetscInt        maxOuter, maxInner;
   PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
   PetscBool       continueOnFailure, monitor;
+  PetscBool       closeCycles; /* a two-set cycle of the active set: close its points and accept */
   PetscInt        contactMonitor; /* -contact_monitor: 1 a line per outer iteration, 2 also per CG iteration */
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       keepStaticActiveSet; /* the static solve keeps the given active set (a ROM started from the FOM's state) */

@@ -615,7 +615,7 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
       {
         const PetscReal *g = &c->gap[3 * gp], *n = &c->gpNormal[3 * gp];
         const PetscReal  band = c->bandTraction[pair];
-        if (c->active[gp]) now = tnOpen[gp] < band ? PETSC_TRUE : PETSC_FALSE;
+        if (c->active[gp]) now = (c->closeOnly || tnOpen[gp] < band) ? PETSC_TRUE : PETSC_FALSE;
         else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > c->activationGap ? PETSC_TRUE : PETSC_FALSE;
       }
       c->activeOlder[gp] = c->activeOld[gp];
@@ -635,6 +635,29 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
   *nchanged  = glob[0];
   c->nactive = glob[1];
   *cycling   = (glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* After a two-set cycle (BoltContactSetUpdateActive): the points that toggle between the sets
+   are closed, i.e. the union of the two sets. Closed is the conservative side: it lets no point
+   penetrate, at the price of a traction at the cycling points that the band would have let
+   open. Returns the number of points closed. */
+PetscErrorCode BoltContactSetCloseCycle(BoltContactSet *c, PetscInt *nclosed)
+{
+  PetscInt loc[2] = {0, 0}, glob[2];
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    if (!c->active[gp] && c->activeOld[gp]) {
+      c->active[gp]     = PETSC_TRUE;
+      c->dirty[gp / 4] = PETSC_TRUE;
+      loc[0]++;
+    }
+    if (c->active[gp]) loc[1]++;
+  }
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, c->mesh->comm));
+  *nclosed   = glob[0];
+  c->nactive = glob[1];
   PetscFunctionReturn(0);
 }
 

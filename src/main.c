@@ -326,6 +326,10 @@ static PetscErrorCode BoltRun(void)
     PetscCall(BoltNewmarkRun(fomNm));
     PetscCall(PetscLogStagePop());
     PetscCall(BoltNewmarkView(fomNm, out));
+    /* the FOM's factorisation is not needed any more; at 562k DOFs it and the offline phase's
+       two factorisations would not fit in memory together */
+    PetscCall(KSPReset(fomNm->ksp));
+    PetscCall(MatDestroy(&fomNm->Keff));
   }
   if (opt.rom) {
     BoltReductionOptions ropt;
@@ -487,6 +491,7 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONInt(&j, "outer_max", fomNm->outerMax));
       PetscCall(BoltJSONInt(&j, "inner_max", fomNm->innerMax));
       PetscCall(BoltJSONInt(&j, "failures", fomNm->failures));
+      PetscCall(BoltJSONInt(&j, "cycles", fomNm->cycles));
       PetscCall(BoltJSONInt(&j, "active_points", contact->nactive));
       PetscCall(BoltJSONInt(&j, "contact_points", contact->ngpGlobal));
       PetscCall(BoltJSONReal(&j, "probe_final", fomNm->probeValue[fomNm->nsteps]));
@@ -532,6 +537,7 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONInt(&j, "outer_total", romNm->outerTotal));
       PetscCall(BoltJSONInt(&j, "inner_total", romNm->innerTotal));
       PetscCall(BoltJSONInt(&j, "failures", romNm->failures));
+      PetscCall(BoltJSONInt(&j, "cycles", romNm->cycles));
       PetscCall(BoltJSONReal(&j, "probe_final", romNm->probeValue[romNm->nsteps]));
       if (opt.romCheckS0) PetscCall(BoltJSONReal(&j, "check_s0_error", romCheckError));
       if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(&j, "orthogonality", rom->orthogonality));

@@ -23,6 +23,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
   nm->tolPenetration = 1e-9;
   nm->inner          = 1;
   nm->calibratePreload = PETSC_TRUE;
+  nm->closeCycles    = PETSC_TRUE;
   nm->preloadScale   = 1.0;
   PetscCall(PetscStrncpy(nm->checkpointBase, "output/joint", sizeof(nm->checkpointBase)));
   *nmp               = nm;
@@ -50,6 +51,7 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsInt("-contact_max_inner", "Inner (augmentation) iterations per outer iteration", NULL, nm->maxInner, &nm->maxInner, NULL));
   PetscCall(PetscOptionsReal("-contact_tol_lambda", "Tolerance on the relative change of the multipliers", NULL, nm->tolLambda, &nm->tolLambda, NULL));
   PetscCall(PetscOptionsReal("-contact_tol_penetration", "Tolerance on the largest penetration of an active point [m]", NULL, nm->tolPenetration, &nm->tolPenetration, NULL));
+  PetscCall(PetscOptionsBool("-contact_cycle_close", "Anti-cycling: when the active set cycles between two sets (its toggling points are then closed) or has not settled in half of -contact_max_outer, points may only close for the rest of the step; false: a cycle stops the run (or warns, with -contact_continue)", NULL, nm->closeCycles, &nm->closeCycles, NULL));
   PetscCall(PetscOptionsBool("-contact_continue", "On non-convergence, warn and go on instead of stopping", NULL, nm->continueOnFailure, &nm->continueOnFailure, NULL));
   PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
   PetscCall(PetscOptionsBool("-preload_calibrate", "Scale the preload layer forces so that the bolt clamps with -preload_force (the layer between them is elastic)", NULL, nm->calibratePreload, &nm->calibratePreload, NULL));
@@ -463,6 +465,7 @@ static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor
   PetscInt        outer, inner = 0, innerTotal = 0;
 
   PetscFunctionBeginUser;
+  c->closeOnly = PETSC_FALSE;
   for (outer = 1;; outer++) {
     PetscInt  nchanged;
     PetscBool cycling;
@@ -480,6 +483,18 @@ static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor
     if (nm->contactMonitor > 0) PetscCall(BoltContactMonitorOuter(nm, outer, inner, nchanged, cycling));
     if (!nchanged) break;
     refactor = PETSC_TRUE;
+    /* Anti-cycling: once the set returns to the one of two iterations before, or has not settled
+       in half the allowed iterations, points may only close for the rest of the step (after a
+       two-set cycle its toggling points are closed first). The set can then only grow, so the
+       loop ends; closed is the side that lets nothing penetrate. */
+    if (nm->closeCycles && !c->closeOnly && (cycling || 2 * outer >= nm->maxOuter)) {
+      PetscInt nclosed = 0;
+      if (cycling) PetscCall(BoltContactSetCloseCycle(c, &nclosed));
+      c->closeOnly = PETSC_TRUE;
+      nm->cycles++;
+      if (nm->contactMonitor > 0 || nm->cycles <= 10) PetscCall(PetscPrintf(comm, "%s step %" PetscInt_FMT ", t = %g s: the active set %s after %" PetscInt_FMT " outer iterations; from now on in this step points only close (%" PetscInt_FMT " points re-closed, %" PetscInt_FMT " active)%s\n", op->name, nm->step, (double)t, cycling ? "cycles between two sets" : "has not settled", outer, nclosed, c->nactive, nm->cycles == 10 ? "; further cycles are counted, not printed" : ""));
+      continue;
+    }
     if (cycling || outer >= nm->maxOuter) {
       if (cycling) nm->cycles++;
       nm->failures++;
