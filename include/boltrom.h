@@ -231,7 +231,7 @@ typedef struct {
   PetscInt        maxOuter, maxInner;
   PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
   PetscBool       continueOnFailure, monitor;
-  PetscBool       closeCycles; /* a two-set cycle of the active set: close its points and accept */
+  PetscBool       closeCycles; /* anti-cycling (-contact_cycle_close): once the set cycles or is slow to settle, points only close */
   PetscInt        contactMonitor; /* -contact_monitor: 1 a line per outer iteration, 2 also per CG iteration */
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       keepStaticActiveSet; /* the static solve keeps the given active set (a ROM started from the FOM's state) */

@@ -88,7 +88,7 @@ def test_help_lists_options():
     for opt in ("-mesh", "-element", "-clamp_group", "-partitioner", "-part_material", "-material_steel_E",
                 "-rayleigh_alpha", "-rayleigh_beta", "-contact_penalty_factor", "-load_group", "-load_force",
                 "-preload_force", "-probe_group", "-output_dir", "-summary", "-modal_nev", "-static_ksp_type",
-                "-modal_eps_nev", "-ts_dt", "-contact_inner", "-krylov_order", "-krylov_s0", "-rom_n_ccm", "-rom_file",
+                "-modal_eps_nev", "-ts_dt", "-contact_inner", "-contact_cycle_close", "-krylov_order", "-krylov_s0", "-rom_n_ccm", "-rom_file",
                 "-rom_contact_augment", "-rom_preload_state", "-rom_contact_penalty_scale", "-rom_closed_krylov",
                 "-export_matrices"):
         assert opt in proc.stdout, opt
