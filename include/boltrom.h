@@ -272,6 +272,7 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *);
 PetscErrorCode BoltNewmarkPreload(BoltNewmark *);
 PetscErrorCode BoltNewmarkRun(BoltNewmark *);
 PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
+PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);

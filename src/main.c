@@ -326,10 +326,8 @@ static PetscErrorCode BoltRun(void)
     PetscCall(BoltNewmarkRun(fomNm));
     PetscCall(PetscLogStagePop());
     PetscCall(BoltNewmarkView(fomNm, out));
-    /* the FOM's factorisation is not needed any more; at 562k DOFs it and the offline phase's
-       two factorisations would not fit in memory together */
-    PetscCall(KSPReset(fomNm->ksp));
-    PetscCall(MatDestroy(&fomNm->Keff));
+    /* at 562k DOFs the FOM's factorisation and the offline phase's two would not fit in memory together */
+    PetscCall(BoltNewmarkReleaseSolver(fomNm));
   }
   if (opt.rom) {
     BoltReductionOptions ropt;

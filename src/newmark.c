@@ -646,6 +646,16 @@ PetscErrorCode BoltNewmarkView(BoltNewmark *nm, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* After the run: frees the factorisation and the effective matrix, keeping the histories and
+   the final state (a run that is over does not need them; they are the largest part of it). */
+PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *nm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPReset(nm->ksp));
+  PetscCall(MatDestroy(&nm->Keff));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
 {
   BoltNewmark *nm = *nmp;
