@@ -199,6 +199,10 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt  gp = 4 * e + q;
       PetscReal lam[3], g[3];
+      if (!rom->active0[gp]) { /* open in the preload: no traction, and none frozen here */
+        c->lambda[3 * gp] = c->lambda[3 * gp + 1] = c->lambda[3 * gp + 2] = 0;
+        continue;
+      }
       for (PetscInt k = 0; k < 3; k++) {
         lam[k] = rom->lambda0[3 * gp + k] * preloadForce;
         g[k]   = -(1 - 1 / rom->penaltyScale) * rom->gap0[3 * gp + k] * preloadForce;

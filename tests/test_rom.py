@@ -92,6 +92,18 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
         # a state matched to the wrong elements is off by percents; what is left is round-off, which
         # the near-hard penalty (condition number ~1e9) lifts to 3e-8..7e-8 of the scale (README)
         assert np.abs(other - rom).max() <= 1e-6 * scale, ranks
+    # The frozen multipliers carry the offset -(s - 1) P g0 only where the preload closed the
+    # joint: at the 8 points it left open, the same offset was a spurious force that grew with the
+    # penalty scale s (start 1.2 % off at s = 1e4 here, and at level 1.8 a 69 % error at the
+    # default s). The start is the same for every scale, to round-off (measured 1.6e-6)
+    start = {}
+    for penalty_scale in ("1", "1e4"):
+        d = tmp_path / f"scale{penalty_scale}"
+        run_summary(common[:-1] + ["2e-4", "-rom_file", rom_file, "-output_dir", d,
+                                   "-rom_contact_penalty_scale", penalty_scale], d)
+        with h5py.File(d / "joint.h5") as f:
+            start[penalty_scale] = f["/rom/probe"][0]
+    assert abs(start["1e4"] - start["1"]) <= 1e-4 * abs(start["1"]), start
 
 
 def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path):
