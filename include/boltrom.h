@@ -266,6 +266,16 @@ typedef struct {
   PetscReal       tCheckpoint;      /* time spent writing checkpoints (not online work) */
 } BoltNewmark;
 
+/* A static preloaded equilibrium, kept so that a later solve of the same scene (the ROM's offline
+   phase after the FOM's run) starts from it instead of solving it again. */
+typedef struct {
+  Vec        q, preload;     /* displacement; preload vector as calibrated */
+  PetscReal *lambda;         /* 12 per local contact element */
+  PetscBool *active;         /* 4 per local contact element */
+  PetscInt   nactive;
+  PetscReal  outer, inner;   /* iterations its solve took */
+} BoltPreloadState;
+
 PetscErrorCode BoltNewmarkCreate(BoltOperator *, BoltNewmark **);
 PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *);
 PetscErrorCode BoltNewmarkSetUp(BoltNewmark *);
@@ -273,6 +283,9 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *);
 PetscErrorCode BoltNewmarkRun(BoltNewmark *);
 PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
 PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *);
+PetscErrorCode BoltNewmarkPreloadStateGet(BoltNewmark *, BoltPreloadState **);
+PetscErrorCode BoltNewmarkPreloadStateSet(BoltNewmark *, const BoltPreloadState *);
+PetscErrorCode BoltPreloadStateDestroy(BoltPreloadState **);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
@@ -310,8 +323,9 @@ typedef struct {
   PetscReal      *gap0;          /* the gaps of that state, likewise */
   PetscBool      *active0;       /* 4 per local contact element */
   PetscReal       penaltyScale;  /* the ROM's penalties: this times the FOM's */
+  PetscReal       bandScale;     /* the ROM's activation band (traction): this times the FOM's */
   PetscInt        nClosed;       /* closed-contact Krylov vectors in the basis */
-  PetscReal       epsSaved[2 * BOLTROM_MAX_PAIRS];
+  PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS];
 } BoltROM;
 
 typedef struct {
@@ -325,7 +339,9 @@ typedef struct {
   PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */
   PetscBool  preloadState, preloadStateSet; /* -rom_preload_state */
   PetscReal  penaltyScale;                  /* -rom_contact_penalty_scale, or 0 for the default */
+  PetscReal  bandScale;                     /* -rom_contact_band_scale, or 0 for the default */
   PetscInt   nClosed;                       /* -rom_closed_krylov */
+  const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;
 
 PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);

@@ -152,6 +152,7 @@ static PetscErrorCode BoltRun(void)
   Mat             Ktied = NULL;
   BoltOperator   *fomOp = NULL;
   BoltNewmark    *fomNm = NULL, *romNm = NULL;
+  BoltPreloadState *fomPreload = NULL;
   BoltOperator   *romOp = NULL;
   BoltROM        *rom   = NULL;
   PetscReal       errL2 = 0, errMean = 0, romCheckError = -1;
@@ -322,6 +323,7 @@ static PetscErrorCode BoltRun(void)
     preloadActive = contact->nactive;
     staticPenetration = fomNm->lastPenetration;
     staticChange      = fomNm->lastChange;
+    if (opt.rom) PetscCall(BoltNewmarkPreloadStateGet(fomNm, &fomPreload)); /* the ROM's offline phase starts from it */
     PetscCall(PetscLogStagePush(boltLog.stageTransient));
     PetscCall(BoltNewmarkRun(fomNm));
     PetscCall(PetscLogStagePop());
@@ -333,7 +335,9 @@ static PetscErrorCode BoltRun(void)
     BoltReductionOptions ropt;
     PetscCall(BoltContactSetResetState(contact));
     PetscCall(BoltReductionOptionsSetFromOptions(comm, &ropt));
+    ropt.fomPreload = fomPreload;
     PetscCall(BoltROMBuild(&ropt, asmb, contact, loads, &rom));
+    PetscCall(BoltPreloadStateDestroy(&fomPreload));
     PetscCall(BoltROMOperatorCreate(rom, &romOp));
     if (opt.romCheckS0) PetscCall(BoltROMCheckAtS0(rom, romOp, asmb, contact, loads, &romCheckError));
     if (opt.exportDir[0]) { /* the reduced tied joint: K_r + V' K_c V with every contact point active */
@@ -524,6 +528,7 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONString(&j, "contact_law", rom->augment ? "augmented" : "penalty"));
       PetscCall(BoltJSONInt(&j, "preload_state", rom->preloadState));
       PetscCall(BoltJSONReal(&j, "contact_penalty_scale", rom->penaltyScale));
+      PetscCall(BoltJSONReal(&j, "contact_band_scale", rom->bandScale));
       PetscCall(BoltJSONInt(&j, "closed_krylov", rom->nClosed));
       PetscCall(BoltJSONInt(&j, "steps", romNm->nsteps));
       PetscCall(BoltJSONReal(&j, "online_s", romNm->tOnline));
@@ -561,6 +566,7 @@ static PetscErrorCode BoltRun(void)
   PetscCall(VecDestroy(&Mx));
   PetscCall(MatDestroy(&Ktied));
   PetscCall(BoltNewmarkDestroy(&fomNm));
+  PetscCall(BoltPreloadStateDestroy(&fomPreload));
   PetscCall(BoltNewmarkDestroy(&romNm));
   PetscCall(BoltROMOperatorDestroy(&romOp));
   PetscCall(BoltROMDestroy(&rom));

@@ -656,6 +656,66 @@ PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *nm)
   PetscFunctionReturn(0);
 }
 
+/* The static preloaded state just solved (call after BoltNewmarkPreload, before the transient). */
+PetscErrorCode BoltNewmarkPreloadStateGet(BoltNewmark *nm, BoltPreloadState **stp)
+{
+  BoltContactSet   *c = nm->op->contact;
+  BoltPreloadState *st;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&st));
+  PetscCall(VecDuplicate(nm->q, &st->q));
+  PetscCall(VecCopy(nm->q, st->q));
+  PetscCall(VecDuplicate(nm->op->preload, &st->preload));
+  PetscCall(VecCopy(nm->op->preload, st->preload));
+  PetscCall(PetscMalloc2(12 * c->nelem + 1, &st->lambda, 4 * c->nelem + 1, &st->active));
+  PetscCall(PetscArraycpy(st->lambda, c->lambda, 12 * c->nelem));
+  PetscCall(PetscArraycpy(st->active, c->active, 4 * c->nelem));
+  st->nactive = c->nactive;
+  st->outer   = nm->staticOuter;
+  st->inner   = nm->staticInner;
+  *stp        = st;
+  PetscFunctionReturn(0);
+}
+
+/* Puts a preloaded state in place of BoltNewmarkPreload's solve, on an operator of the same
+   scene (same contact set, same layout): q, the calibrated preload, the multipliers and the
+   active set, with every contact element due for a stiffness update. */
+PetscErrorCode BoltNewmarkPreloadStateSet(BoltNewmark *nm, const BoltPreloadState *st)
+{
+  BoltContactSet *c = nm->op->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(st->q, nm->q));
+  PetscCall(VecCopy(st->preload, nm->op->preload));
+  PetscCall(VecZeroEntries(nm->v));
+  PetscCall(VecZeroEntries(nm->acc));
+  PetscCall(PetscArraycpy(c->lambda, st->lambda, 12 * c->nelem));
+  PetscCall(PetscArraycpy(c->active, st->active, 4 * c->nelem));
+  PetscCall(PetscArraycpy(c->activeOld, st->active, 4 * c->nelem));
+  PetscCall(PetscArraycpy(c->activeOlder, st->active, 4 * c->nelem));
+  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
+  c->nactive       = st->nactive;
+  nm->step         = 0;
+  nm->staticOuter  = st->outer;
+  nm->staticInner  = st->inner;
+  nm->preloadScale = 1.0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltPreloadStateDestroy(BoltPreloadState **stp)
+{
+  BoltPreloadState *st = *stp;
+
+  PetscFunctionBeginUser;
+  if (!st) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&st->q));
+  PetscCall(VecDestroy(&st->preload));
+  PetscCall(PetscFree2(st->lambda, st->active));
+  PetscCall(PetscFree(*stp));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
 {
   BoltNewmark *nm = *nmp;

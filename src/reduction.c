@@ -13,6 +13,7 @@ PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOp
   o->extraInputs = PETSC_FALSE;
   o->checkOrthogonality = PETSC_FALSE;
   o->nCCM = o->nJIM = 100; /* the paper's */
+  o->fomPreload = NULL;
   PetscOptionsBegin(comm, NULL, "Reduction", "boltrom");
   PetscCall(PetscOptionsString("-rom_file", "ROM file (HDF5) to reuse if it matches, or to write", NULL, o->file, o->file, sizeof(o->file), NULL));
   PetscCall(PetscOptionsInt("-rom_n_ccm", "Interface reduction: characteristic constraint mode vectors (0 and -rom_n_jim 0: no interface reduction)", NULL, o->nCCM, &o->nCCM, NULL));
@@ -28,8 +29,11 @@ PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOp
   o->nClosed = 3;
   PetscCall(PetscOptionsInt("-rom_closed_krylov", "With -rom_preload_state: closed-contact Krylov vectors added after the load response (each the FOM's static response, contact closed, to the mass times the previous one)", NULL, o->nClosed, &o->nClosed, NULL));
   PetscCall(PetscOptionsReal("-rom_contact_penalty_scale", "The ROM's contact penalties as a multiple of the FOM's (default with -rom_preload_state against an augmented FOM: 500, or 20 with -rom_closed_krylov 0; else 1)", NULL, o->penaltyScale, &o->penaltyScale, NULL));
+  o->bandScale = 0;
+  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (default with -rom_preload_state: 10, else 1)", NULL, o->bandScale, &o->bandScale, NULL));
   PetscOptionsEnd();
   PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
+  PetscCheck(o->bandScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_band_scale must be > 0 (got %g)", (double)o->bandScale);
   PetscCheck(o->nClosed >= 0 && o->nClosed <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_closed_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nClosed);
   PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
   if (o->file[0]) PetscCall(BoltMakeParentDir(comm, o->file)); /* fail now, not after the offline phase */
@@ -177,7 +181,7 @@ static PetscErrorCode BoltProjectVec(BV V, Vec f, Vec *fr)
    under the clamp and starts from a tilted state; with q0 in its basis and the FOM's multipliers
    frozen it starts exactly where the FOM does, and the load response gives it one gap-free
    shape, which lets a stiffer penalty carry the increments without locking. */
-static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, Vec extra[], Vec *preload)
+static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, const BoltPreloadState *shared, Vec extra[], Vec *preload)
 {
   BoltOperator *op;
   BoltNewmark  *nm;
@@ -194,7 +198,8 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(BoltNewmarkSetFromOptions(nm));
   nm->preloadTarget = F;
   PetscCall(BoltNewmarkSetUp(nm));
-  PetscCall(BoltNewmarkPreload(nm));
+  if (shared) PetscCall(BoltNewmarkPreloadStateSet(nm, shared)); /* the FOM of this run solved it */
+  else PetscCall(BoltNewmarkPreload(nm));
   PetscCall(VecDuplicate(nm->q, &extra[0]));
   PetscCall(VecCopy(nm->q, extra[0]));
   PetscCall(VecDuplicate(op->preload, preload));
@@ -207,7 +212,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
     rom->gap0[k]    = c->gap[k] / F;
   }
   PetscCall(PetscArraycpy(rom->active0, c->active, 4 * c->nelem));
-  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (offline): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", (double)nm->staticOuter, (double)nm->staticInner, c->nactive, c->ngpGlobal));
+  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (double)nm->staticOuter, (double)nm->staticInner, c->nactive, c->ngpGlobal));
   /* the load on top, from the preloaded state (multipliers warm, active set free to change) */
   nm->staticWithLoad = PETSC_TRUE;
   PetscCall(BoltNewmarkPreload(nm));
@@ -298,6 +303,10 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
      is 1e5 E/m, where the penalty law alone matches the augmented FOM. Without the closed-contact
      Krylov shapes so stiff a penalty locks the reduced interface, and 20 x is the best (README). */
   rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augmentOption ? (o->nClosed > 0 ? 500.0 : 20.0) : 1.0);
+  /* Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
+     at the rim of the preloaded zone, where the tractions are near zero, the FOM's band let such
+     errors open points the FOM keeps closed (README, mesh levels: 10 x was the best of 1-30) */
+  rom->bandScale = o->bandScale > 0 ? o->bandScale : (rom->preloadState ? 10.0 : 1.0);
   rom->nClosed = rom->preloadState ? o->nClosed : 0;
   if (rom->preloadState) {
     PetscCall(PetscStrlcat(rom->fingerprint, "; preload state", sizeof(rom->fingerprint)));
@@ -319,6 +328,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         loaded->tOffline = t3 - t0;
         loaded->augment  = rom->augment;
         loaded->penaltyScale = rom->penaltyScale;
+        loaded->bandScale    = rom->bandScale;
         loaded->nClosed      = rom->nClosed;
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
@@ -361,7 +371,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     Vec      extra[18];
     PetscInt added, nextra = 2 + o->nClosed;
     PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
-    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, extra, &preloadCalibrated));
+    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, o->fomPreload, extra, &preloadCalibrated));
     PetscCall(BoltBasisAppend(V, nextra, extra, &added));
     for (PetscInt k = 0; k < nextra; k++) PetscCall(VecDestroy(&extra[k]));
     PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));

@@ -139,12 +139,14 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   op->contactForces        = ROMContactForces;
   op->contactStiffness     = ROMContactStiffness;
   op->probe                = ROMProbe;
-  /* the ROM's own penalties, restored when the operator goes */
+  /* the ROM's own penalties and activation band, restored when the operator goes */
   for (PetscInt p = 0; p < rom->contact->npairs; p++) {
     rom->epsSaved[2 * p]     = rom->contact->epsN[p];
     rom->epsSaved[2 * p + 1] = rom->contact->epsT[p];
+    rom->epsSaved[2 * BOLTROM_MAX_PAIRS + p] = rom->contact->bandTraction[p];
     rom->contact->epsN[p] *= rom->penaltyScale;
     rom->contact->epsT[p] *= rom->penaltyScale;
+    rom->contact->bandTraction[p] *= rom->bandScale;
   }
   /* K_cr starts empty with every element due for an update */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
@@ -169,6 +171,7 @@ PetscErrorCode BoltROMOperatorDestroy(BoltOperator **opp)
     for (PetscInt p = 0; p < rom->contact->npairs; p++) {
       rom->contact->epsN[p] = rom->epsSaved[2 * p];
       rom->contact->epsT[p] = rom->epsSaved[2 * p + 1];
+      rom->contact->bandTraction[p] = rom->epsSaved[2 * BOLTROM_MAX_PAIRS + p];
     }
   }
   PetscCall(MatDestroy(&op->M));

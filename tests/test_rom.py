@@ -61,7 +61,7 @@ def test_rom_with_interface_reduction(joint_small, tmp_path):
     assert r["orthogonality"] < 1e-12
     # fewer reduced DOFs than contact constraints: the reduced dual loop uses the penalty law
     assert r["contact_law"] == "penalty" and r["failures"] == 0
-    assert r["preload_state"] == 1 and r["closed_krylov"] == 3 and r["contact_penalty_scale"] == 500
+    assert r["preload_state"] == 1 and r["closed_krylov"] == 3 and r["contact_penalty_scale"] == 500 and r["contact_band_scale"] == 10
     assert s["errors"]["load_point"]["e_L2"] < 2e-3  # measured 4.4e-4 (README)
 
 
@@ -79,9 +79,10 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
         fom, rom = f["/fom/probe"][...], f["/rom/probe"][...]
     scale = np.abs(fom).max()
     print("preloaded probe: FOM", fom[0], "ROM", rom[0], "; e_L2", s["errors"]["load_point"]["e_L2"])
-    # the penalty law alone started 7 times further down (README): the state is the FOM's now, to
-    # the round-off of the reduced system under its near-hard penalty (measured 5.6e-6 of the scale)
-    assert abs(rom[0] - fom[0]) <= 5e-5 * scale
+    # the penalty law alone started 7 times further down (README). The offline phase takes the FOM
+    # run's own preloaded state, so the start is the FOM's to the round-off of the reduced system
+    # under its near-hard penalty (measured 1e-9 of the scale; 2e-6 when it was solved again)
+    assert abs(rom[0] - fom[0]) <= 1e-7 * scale
     assert s["errors"]["load_point"]["e_L2"] < 4e-3  # measured 2.7e-3 (paper: 3.5e-3 at its level)
     for ranks in (1, 3):
         d = tmp_path / f"np{ranks}"
@@ -200,8 +201,10 @@ def test_rom_where_the_load_opens_the_joint(joint_small, tmp_path):
     force, load, preload = (float(x) for x in re.match(r"ROM: closed-contact Krylov forcing of norm (\S+) \(load (\S+), preload (\S+)\)", line).groups())
     assert load == pytest.approx(1000) and force == pytest.approx(1e-3 * preload, rel=1e-6) and force < load
     assert s["fom"]["failures"] == 0 and s["rom"]["failures"] == 0
-    assert s["rom"]["cycles"] > 0  # the anti-cycling rule was needed (23 steps, README)
-    assert s["errors"]["load_point"]["e_L2"] < 0.025  # measured 1.5 % on 1 rank (1.0-1.4 % on 2)
+    assert s["rom"]["cycles"] > 0  # the anti-cycling rule was needed (README)
+    print("1 kN: e_L2", s["errors"]["load_point"]["e_L2"], "cycles", s["rom"]["cycles"])
+    assert s["errors"]["load_point"]["e_L2"] < 0.025  # measured 1.2 % on 1 rank, 14 steps with the rule (0.3 % on 2)
     proc = run_boltrom(base + ["-fom", "false", "-contact_cycle_close", "false", "-output_dir", tmp_path / "b"], check=False)
-    assert proc.returncode != 0 and "the active set did not settle" in proc.stderr and "cycles between two sets" in proc.stderr
+    # it either cycles or runs out of outer iterations (it cycled with the FOM's activation band)
+    assert proc.returncode != 0 and "the active set did not settle" in proc.stderr
     assert not (tmp_path / "b" / "joint.h5").exists()
