@@ -66,7 +66,7 @@ def test_rom_with_interface_reduction(joint_small, tmp_path):
 
 
 def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
-    """The interface-reduced ROM starts where the FOM does (offline static solve: q0 in the basis,
+    """The interface-reduced ROM starts where the FOM does (the FOM run's preloaded state: q0 in the basis,
     multipliers frozen), its order-1 history follows the FOM, and the preloaded state stored in
     the ROM file serves another partition (2 ranks write it, 1 and 3 ranks read it)."""
     mesh, _ = joint_small
