@@ -61,7 +61,7 @@ def test_rom_with_interface_reduction(joint_small, tmp_path):
     assert r["orthogonality"] < 1e-12
     # fewer reduced DOFs than contact constraints: the reduced dual loop uses the penalty law
     assert r["contact_law"] == "penalty" and r["failures"] == 0
-    assert r["preload_state"] == 1 and r["closed_krylov"] == 3 and r["contact_penalty_scale"] == 500 and r["contact_band_scale"] == 10
+    assert r["preload_state"] == 1 and r["closed_krylov"] == 3 and r["contact_penalty_scale"] == 500 and r["contact_band_scale"] == 1
     assert s["errors"]["load_point"]["e_L2"] < 2e-3  # measured 4.4e-4 (README)
 
 
@@ -203,7 +203,7 @@ def test_rom_where_the_load_opens_the_joint(joint_small, tmp_path):
     assert s["fom"]["failures"] == 0 and s["rom"]["failures"] == 0
     assert s["rom"]["cycles"] > 0  # the anti-cycling rule was needed (README)
     print("1 kN: e_L2", s["errors"]["load_point"]["e_L2"], "cycles", s["rom"]["cycles"])
-    assert s["errors"]["load_point"]["e_L2"] < 0.025  # measured 1.2 % on 1 rank, 14 steps with the rule (0.3 % on 2)
+    assert s["errors"]["load_point"]["e_L2"] < 0.025  # measured 1.1 % on 1 rank (1.0-1.1 % on 2)
     proc = run_boltrom(base + ["-fom", "false", "-contact_cycle_close", "false", "-output_dir", tmp_path / "b"], check=False)
     # it either cycles or runs out of outer iterations (it cycled with the FOM's activation band)
     assert proc.returncode != 0 and "the active set did not settle" in proc.stderr
