@@ -325,7 +325,7 @@ typedef struct {
   PetscReal       penaltyScale;  /* the ROM's penalties: this times the FOM's */
   PetscReal       bandScale;     /* the ROM's activation band (traction): this times the FOM's */
   PetscInt        nClosed;       /* closed-contact Krylov vectors in the basis */
-  PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS];
+  PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands, while the ROM's are set */
 } BoltROM;
 
 typedef struct {

@@ -174,8 +174,8 @@ static PetscErrorCode BoltProjectVec(BV V, Vec f, Vec *fr)
   PetscFunctionReturn(0);
 }
 
-/* The FOM's static preloaded equilibrium, offline: q0, the multipliers (per newton of preload)
-   and the active set, then the static response to the scene's load from that state with the
+/* The FOM's static preloaded equilibrium (the FOM run's if it ran, else solved here): q0, the
+   multipliers (per newton of preload) and the active set, then the static response to the scene's load from that state with the
    contact closed by the augmented Lagrangian. The interface-reduced ROM cannot close its gaps
    (fewer DOFs than constraints), so under the penalty law alone it penetrates by micrometres
    under the clamp and starts from a tilted state; with q0 in its basis and the FOM's multipliers
