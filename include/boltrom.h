@@ -165,6 +165,7 @@ PetscErrorCode BoltContactSetPenetration(BoltContactSet *, PetscReal[], PetscRea
 PetscErrorCode BoltContactSetAugment(BoltContactSet *, PetscReal *, PetscReal *);
 PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *, PetscInt *, PetscBool *);
 PetscErrorCode BoltContactSetCloseCycle(BoltContactSet *, PetscInt *);
+PetscErrorCode BoltContactSetSetActive(BoltContactSet *, const PetscBool[]);
 PetscErrorCode BoltContactSetForces(BoltContactSet *);
 PetscErrorCode BoltContactSetStiffness(BoltContactSet *, Mat *);
 PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *, PetscReal[]);
@@ -272,7 +273,6 @@ typedef struct {
   Vec        q, preload;     /* displacement; preload vector as calibrated */
   PetscReal *lambda;         /* 12 per local contact element */
   PetscBool *active;         /* 4 per local contact element */
-  PetscInt   nactive;
   PetscReal  outer, inner;   /* iterations its solve took */
 } BoltPreloadState;
 

@@ -638,6 +638,22 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
   PetscFunctionReturn(0);
 }
 
+/* Puts a given active set in place (a stored preloaded state): the sets of the last two outer
+   iterations are taken to be the same, and every element is due for a stiffness update. */
+PetscErrorCode BoltContactSetSetActive(BoltContactSet *c, const PetscBool active[])
+{
+  PetscInt nact = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    c->active[gp] = c->activeOld[gp] = c->activeOlder[gp] = active[gp];
+    if (active[gp]) nact++;
+  }
+  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
+  PetscCall(MPIU_Allreduce(&nact, &c->nactive, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
 /* After a two-set cycle (BoltContactSetUpdateActive): the points that toggle between the sets
    are closed, i.e. the union of the two sets. Closed is the conservative side: it lets no point
    penetrate, at the price of a traction at the cycling points that the band would have let

@@ -674,7 +674,6 @@ PetscErrorCode BoltNewmarkPreloadStateGet(BoltNewmark *nm, BoltPreloadState **st
   PetscCall(PetscMalloc2(12 * c->nelem + 1, &st->lambda, 4 * c->nelem + 1, &st->active));
   PetscCall(PetscArraycpy(st->lambda, c->lambda, 12 * c->nelem));
   PetscCall(PetscArraycpy(st->active, c->active, 4 * c->nelem));
-  st->nactive = c->nactive;
   st->outer   = nm->staticOuter;
   st->inner   = nm->staticInner;
   *stp        = st;
@@ -694,11 +693,7 @@ PetscErrorCode BoltNewmarkPreloadStateSet(BoltNewmark *nm, const BoltPreloadStat
   PetscCall(VecZeroEntries(nm->v));
   PetscCall(VecZeroEntries(nm->acc));
   PetscCall(PetscArraycpy(c->lambda, st->lambda, 12 * c->nelem));
-  PetscCall(PetscArraycpy(c->active, st->active, 4 * c->nelem));
-  PetscCall(PetscArraycpy(c->activeOld, st->active, 4 * c->nelem));
-  PetscCall(PetscArraycpy(c->activeOlder, st->active, 4 * c->nelem));
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
-  c->nactive       = st->nactive;
+  PetscCall(BoltContactSetSetActive(c, st->active));
   nm->step         = 0;
   nm->staticOuter  = st->outer;
   nm->staticInner  = st->inner;

@@ -190,7 +190,6 @@ PetscErrorCode BoltROMOperatorDestroy(BoltOperator **opp)
 PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal preloadForce)
 {
   BoltContactSet *c = rom->contact;
-  PetscInt        nact = 0;
 
   PetscFunctionBeginUser;
   if (!rom->preloadState) PetscFunctionReturn(0);
@@ -213,12 +212,7 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
       BoltContactTrialTraction(lam, g, &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], &c->lambda[3 * gp]);
     }
   }
-  for (PetscInt g = 0; g < 4 * c->nelem; g++) {
-    c->active[g] = c->activeOld[g] = c->activeOlder[g] = rom->active0[g];
-    if (rom->active0[g]) nact++;
-  }
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
-  PetscCall(MPIU_Allreduce(&nact, &c->nactive, 1, MPIU_INT, MPI_SUM, rom->comm));
+  PetscCall(BoltContactSetSetActive(c, rom->active0));
   nm->calibratePreload = PETSC_FALSE;
   /* the static state is the FOM's by construction: its active set is not judged again there
      (under the ROM's stiffer penalty, points at the rim whose traction is within the band of
