@@ -634,7 +634,9 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
   PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
   *nchanged  = glob[0];
   c->nactive = glob[1];
-  *cycling   = (glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
+  /* once points only close (anti-cycling) the set grows and cannot cycle: a return to the set of
+     two iterations back is then the points opened just before closing again */
+  *cycling   = (!c->closeOnly && glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 

@@ -495,9 +495,6 @@ static PetscErrorCode BoltDualLoop(BoltNewmark *nm, Vec rhs0, PetscBool refactor
       if (nm->contactMonitor > 0 || nm->cycles <= 10) PetscCall(PetscPrintf(comm, "%s step %" PetscInt_FMT ", t = %g s: the active set %s after %" PetscInt_FMT " outer iterations; from now on in this step points only close (%" PetscInt_FMT " points re-closed, %" PetscInt_FMT " active)%s\n", op->name, nm->step, (double)t, cycling ? "cycles between two sets" : "has not settled", outer, nclosed, c->nactive, nm->cycles == 10 ? "; further cycles are counted, not printed" : ""));
       continue;
     }
-    /* once points only close the set grows, so it cannot cycle: a return to the set of two
-       iterations back is the points opened just before the rule closing again */
-    if (c->closeOnly) cycling = PETSC_FALSE;
     if (cycling || outer >= nm->maxOuter) {
       if (cycling) nm->cycles++;
       nm->failures++;
