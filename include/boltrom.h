@@ -217,7 +217,7 @@ struct BoltOperator_s {
   BoltContactSet  *contact;
   void            *ctx;
   PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);   /* q -> contact->uc */
-  PetscErrorCode (*contactForces)(BoltOperator *, Vec);          /* contact->fc -> F (overwritten) */
+  PetscErrorCode (*contactForces)(BoltOperator *, const PetscReal[], Vec); /* Gauss-point tractions -> F (overwritten) */
   PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);     /* K_c of the active set */
   PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
 };
@@ -294,6 +294,18 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
 PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltOperator **);
 PetscErrorCode BoltFOMDestroy(BoltOperator **);
 
+/* ------------------------------------------------------------------ exact_sum.c */
+/* n sums over ranks that give the same bits on any partition (two fixed grids per term) */
+typedef struct {
+  PetscInt   n, nalloc;
+  PetscReal  sigma[2];
+  PetscReal *acc; /* 2 n: the exact partial sums of the two grids */
+} BoltExactSum;
+PetscErrorCode BoltExactSumBegin(BoltExactSum *, PetscInt, PetscReal, PetscInt);
+void           BoltExactSumAdd(BoltExactSum *, const PetscReal[]);
+PetscErrorCode BoltExactSumEnd(BoltExactSum *, MPI_Comm, PetscReal[]);
+PetscErrorCode BoltExactSumDestroy(BoltExactSum *);
+
 /* ------------------------------------------------------------------ reduction.c, rom.c */
 /* The reduced model: projected matrices (replicated on every rank, small and dense), the rows
    of the basis at this rank's contact DOFs and at the probe, and the reduced contact stiffness
@@ -307,7 +319,11 @@ typedef struct {
   PetscScalar    *Vc;                /* nlocal x n, column-major: rows of V at contact->localGlobal */
   PetscReal      *Vprobe;            /* n: the probe row of V */
   PetscReal      *Ke;                /* 144 per local contact element: M_e of K_e = [M_e -M_e; -M_e M_e] inside Kcr */
+  PetscReal      *De;                /* 12 x n per local contact element: V_b - V_a at its node pairs (0 where clamped) */
+  PetscReal      *DeMax;             /* per local contact element: max |De| */
+  PetscReal      *felem;             /* 12 per local contact element: the side-b forces of the tractions */
   PetscScalar    *work, *work2, *dK; /* scratch */
+  BoltExactSum    sum;               /* the reductions over ranks, partition-independent */
   BoltContactSet *contact;
   /* offline figures */
   PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];

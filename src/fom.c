@@ -13,11 +13,12 @@ static PetscErrorCode FOMContactDisplacements(BoltOperator *op, Vec q)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode FOMContactForces(BoltOperator *op, Vec F)
+static PetscErrorCode FOMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F)
 {
   BoltContactSet *c = op->contact;
 
   PetscFunctionBeginUser;
+  PetscCall(BoltContactSetForcesOf(c, lambda));
   PetscCall(VecZeroEntries(F));
   PetscCall(VecScatterBegin(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
   PetscCall(VecScatterEnd(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));

@@ -183,8 +183,7 @@ static PetscErrorCode BoltSolveWithForces(BoltNewmark *nm, Vec rhs0, const Petsc
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(PetscLogEventBegin(boltLog.contactForces, 0, 0, 0, 0));
-  PetscCall(BoltContactSetForcesOf(op->contact, lambda));
-  PetscCall(op->contactForces(op, nm->Fc));
+  PetscCall(op->contactForces(op, lambda, nm->Fc));
   if (rhs0) PetscCall(VecWAXPY(nm->work, -1.0, nm->Fc, rhs0));
   else PetscCall(VecCopy(nm->Fc, nm->work));
   PetscCall(PetscLogEventEnd(boltLog.contactForces, 0, 0, 0, 0));

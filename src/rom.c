@@ -1,49 +1,83 @@
 /* The reduced-order operator: small dense matrices on every rank, solved redundantly with
    LAPACK (cheaper than broadcasting the solution), and the contact DOFs reached through the
-   rows of the basis: u_c = V_c q_r, F_r = V_c' f_c summed over ranks, and
-   K_cr = sum_e V_e' K_e V_e (as D_e' M_e D_e) updated only for elements whose active points changed. */
+   rows of the basis: u_c = V_c q_r, F_r = sum_e D_e' f_e and K_cr = sum_e V_e' K_e V_e (as
+   D_e' M_e D_e, updated only for elements whose active points changed), with D_e = V_b - V_a at
+   the element's node pairs. Both sums are exact over ranks: the ROM's history has the same bits
+   on any partition. */
 #include "boltrom.h"
-#include <petscblaslapack.h>
 
+/* u_c = V_c q. Each row is summed in the same order whatever its position in the rank's block
+   (a BLAS kernel may treat the rows of a vector block and of its tail differently), so a contact
+   DOF gets the same bits on any partition. */
 static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
 {
   BoltROM           *rom = (BoltROM *)op->ctx;
   BoltContactSet    *c   = rom->contact;
   const PetscScalar *x;
-  PetscScalar       *u, one = 1.0, zero = 0.0;
-  PetscBLASInt       m, n, inc = 1;
+  PetscScalar       *u;
+  const PetscInt     m = c->nlocal;
 
   PetscFunctionBeginUser;
-  if (!c->nlocal) PetscFunctionReturn(0);
-  PetscCall(PetscBLASIntCast(c->nlocal, &m));
-  PetscCall(PetscBLASIntCast(rom->n, &n));
+  if (!m) PetscFunctionReturn(0);
   PetscCall(VecGetArrayRead(q, &x));
   PetscCall(VecGetArray(c->uc, &u));
-  PetscCallBLAS("BLASgemv", BLASgemv_("N", &m, &n, &one, rom->Vc, &m, x, &inc, &zero, u, &inc));
+  for (PetscInt i = 0; i < m; i++) u[i] = 0;
+  for (PetscInt j = 0; j < rom->n; j += 4) { /* four columns per pass over u, still in order j */
+    const PetscInt     nb = PetscMin(4, rom->n - j);
+    const PetscScalar *restrict c0 = rom->Vc + m * j, x0 = x[j];
+    PetscScalar *restrict       uu = u;
+    if (nb == 4) {
+      const PetscScalar *restrict c1 = c0 + m, *restrict c2 = c1 + m, *restrict c3 = c2 + m, x1 = x[j + 1], x2 = x[j + 2], x3 = x[j + 3];
+      for (PetscInt i = 0; i < m; i++) uu[i] = uu[i] + c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3;
+    } else
+      for (PetscInt k = 0; k < nb; k++)
+        for (PetscInt i = 0; i < m; i++) uu[i] += c0[i + m * k] * x[j + k];
+  }
   PetscCall(VecRestoreArray(c->uc, &u));
   PetscCall(VecRestoreArrayRead(q, &x));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ROMContactForces(BoltOperator *op, Vec F)
+/* F_r = sum_e D_e' f_e over the contact elements of all ranks, f_e the side-b nodal forces of
+   the element's Gauss-point tractions (side a takes -f_e). Per element the work does not depend
+   on the partition, and the sum over elements is exact on fixed grids (BoltExactSum), so F_r
+   has the same bits on any number of ranks. */
+static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F)
 {
-  BoltROM           *rom = (BoltROM *)op->ctx;
-  BoltContactSet    *c   = rom->contact;
-  const PetscScalar *f;
-  PetscScalar       *y, one = 1.0, zero = 0.0;
-  PetscBLASInt       m, n, inc = 1;
+  BoltROM        *rom = (BoltROM *)op->ctx;
+  BoltContactSet *c   = rom->contact;
+  const PetscInt  n   = rom->n;
+  PetscReal       bound = 0, *g = rom->work;
+  PetscScalar    *y;
 
   PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    PetscReal *f = &rom->felem[12 * e], size = 0;
+    for (PetscInt k = 0; k < 12; k++) f[k] = 0;
+    for (PetscInt q = 0; q < 4; q++) {
+      const PetscInt   gp = 4 * e + q;
+      const PetscReal *N = &c->gpN[16 * e + 4 * q], *lam = &lambda[3 * gp], w = c->gpW[gp];
+      if (lam[0] == 0 && lam[1] == 0 && lam[2] == 0) continue;
+      for (PetscInt a = 0; a < 4; a++)
+        for (PetscInt k = 0; k < 3; k++) f[3 * a + k] += w * N[a] * lam[k];
+    }
+    for (PetscInt k = 0; k < 12; k++) size += PetscAbsReal(f[k]);
+    bound = PetscMax(bound, rom->DeMax[e] * size);
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
+  PetscCall(BoltExactSumBegin(&rom->sum, n, bound, c->ngpGlobal / 4));
+  for (PetscInt e = 0; e < c->nelem && bound > 0; e++) {
+    const PetscReal *f = &rom->felem[12 * e], *D = &rom->De[12 * n * e];
+    if (rom->DeMax[e] == 0) continue;
+    for (PetscInt j = 0; j < n; j++) {
+      PetscReal v = 0;
+      for (PetscInt k = 0; k < 12; k++) v += D[k + 12 * j] * f[k];
+      g[j] = v;
+    }
+    BoltExactSumAdd(&rom->sum, g);
+  }
   PetscCall(VecGetArray(F, &y));
-  if (c->nlocal) {
-    PetscCall(PetscBLASIntCast(c->nlocal, &m));
-    PetscCall(PetscBLASIntCast(rom->n, &n));
-    PetscCall(VecGetArrayRead(c->fc, &f));
-    PetscCallBLAS("BLASgemv", BLASgemv_("T", &m, &n, &one, rom->Vc, &m, f, &inc, &zero, y, &inc));
-    PetscCall(VecRestoreArrayRead(c->fc, &f));
-  } else
-    for (PetscInt j = 0; j < rom->n; j++) y[j] = 0;
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, y, (PetscMPIInt)rom->n, MPIU_SCALAR, MPIU_SUM, rom->comm));
+  PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
   PetscCall(VecRestoreArray(F, &y));
   PetscFunctionReturn(0);
 }
@@ -52,46 +86,62 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
 {
   BoltROM        *rom = (BoltROM *)op->ctx;
   BoltContactSet *c   = rom->contact;
-  PetscInt        n = rom->n, changed = 0, any;
-  PetscBLASInt    bn, b12 = 12;
-  PetscScalar     one = 1.0, zero = 0.0, *De = rom->work, *T = rom->work2, *dK = rom->dK, *K;
-  PetscReal       Knew[576];
+  const PetscInt  n   = rom->n;
+  PetscInt        ndirty = 0, *dirty;
+  PetscReal       bound = 0, *delta, *T = rom->work2, *dK = rom->dK, Knew[576];
+  PetscScalar    *K;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscBLASIntCast(n, &bn));
+  /* K_e = [M -M; -M M] (B = [-N, N]), so V_e' K_e V_e = D_e' M D_e with D_e = V_b - V_a, the
+     relative displacements of the node pairs. Working with D_e spares the directions that open
+     no gap the penalty's round-off (through K_e it would be about eps_N |V|^2 u, large under a
+     near-hard penalty against the joint's soft stiffness). First the change of M of every
+     element whose points changed, and a bound of its reduced part for the exact sum */
+  for (PetscInt e = 0; e < c->nelem; e++) ndirty += c->dirty[e] ? 1 : 0;
+  PetscCall(PetscMalloc2(144 * ndirty + 1, &delta, ndirty + 1, &dirty));
+  ndirty = 0;
   for (PetscInt e = 0; e < c->nelem; e++) {
-    PetscScalar delta[144];
+    PetscReal *d = &delta[144 * ndirty], size = 0;
     if (!c->dirty[e]) continue;
-    /* K_e = [M -M; -M M] (B = [-N, N]), so V_e' K_e V_e = D_e' M D_e with D_e = V_b - V_a, the
-       relative displacements of the node pairs. Forming D_e first spares the directions that open
-       no gap the penalty's round-off (through K_e it would be about eps_N |V|^2 u, large under a
-       near-hard penalty against the joint's soft stiffness) */
     PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], &c->active[4 * e], Knew));
     for (PetscInt a = 0; a < 12; a++)
       for (PetscInt b = 0; b < 12; b++) {
-        delta[12 * a + b]          = Knew[24 * a + b] - rom->Ke[144 * e + 12 * a + b];
+        d[12 * a + b]                 = Knew[24 * a + b] - rom->Ke[144 * e + 12 * a + b];
         rom->Ke[144 * e + 12 * a + b] = Knew[24 * a + b];
+        size += PetscAbsReal(d[12 * a + b]);
       }
     c->dirty[e] = PETSC_FALSE;
-    for (PetscInt k = 0; k < 12; k++) {
-      PetscInt la = c->elemLocal[24 * e + k], lb = c->elemLocal[24 * e + 12 + k];
-      for (PetscInt j = 0; j < n; j++) De[k + 12 * j] = (lb >= 0 ? rom->Vc[lb + c->nlocal * j] : 0.0) - (la >= 0 ? rom->Vc[la + c->nlocal * j] : 0.0);
-    }
-    if (!changed) PetscCall(PetscArrayzero(dK, n * n));
-    PetscCallBLAS("BLASgemm", BLASgemm_("N", "N", &b12, &bn, &b12, &one, delta, &b12, De, &b12, &zero, T, &b12));
-    PetscCallBLAS("BLASgemm", BLASgemm_("T", "N", &bn, &bn, &b12, &one, De, &b12, T, &b12, &one, dK, &bn));
-    changed++;
+    bound       = PetscMax(bound, PetscSqr(rom->DeMax[e]) * size);
+    dirty[ndirty++] = e;
   }
-  PetscCall(MPIU_Allreduce(&changed, &any, 1, MPIU_INT, MPI_SUM, rom->comm));
-  if (any) {
-    if (!changed) PetscCall(PetscArrayzero(dK, n * n));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, dK, (PetscMPIInt)(n * n), MPIU_SCALAR, MPIU_SUM, rom->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
+  if (bound > 0) {
+    /* K_cr += sum_e D_e' (M_new - M_old) D_e, each term symmetric by construction */
+    PetscCall(BoltExactSumBegin(&rom->sum, n * n, bound, c->ngpGlobal / 4));
+    for (PetscInt i = 0; i < ndirty; i++) {
+      const PetscReal *d = &delta[144 * i], *D = &rom->De[12 * n * dirty[i]];
+      for (PetscInt l = 0; l < n; l++)
+        for (PetscInt a = 0; a < 12; a++) {
+          PetscReal v = 0;
+          for (PetscInt b = 0; b < 12; b++) v += d[12 * a + b] * D[b + 12 * l];
+          T[a + 12 * l] = v;
+        }
+      for (PetscInt l = 0; l < n; l++)
+        for (PetscInt j = 0; j <= l; j++) {
+          PetscReal v = 0;
+          for (PetscInt a = 0; a < 12; a++) v += D[a + 12 * j] * T[a + 12 * l];
+          dK[j + n * l] = dK[l + n * j] = v;
+        }
+      BoltExactSumAdd(&rom->sum, dK);
+    }
+    PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, dK));
     PetscCall(MatDenseGetArray(rom->Kcr, &K));
     for (PetscInt k = 0; k < n * n; k++) K[k] += dK[k];
     PetscCall(MatDenseRestoreArray(rom->Kcr, &K));
     PetscCall(MatAssemblyBegin(rom->Kcr, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(rom->Kcr, MAT_FINAL_ASSEMBLY));
   }
+  PetscCall(PetscFree2(delta, dirty));
   *Kc = rom->Kcr;
   PetscFunctionReturn(0);
 }
@@ -156,6 +206,24 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(PetscFree3(rom->work, rom->work2, rom->dK));
   PetscCall(PetscMalloc3(12 * n + 1, &rom->work, 12 * n + 1, &rom->work2, n * n + 1, &rom->dK));
   for (PetscInt e = 0; e < rom->contact->nelem; e++) rom->contact->dirty[e] = PETSC_TRUE;
+  /* D_e = V_b - V_a of every local contact element, kept for the forces and K_cr */
+  {
+    BoltContactSet *c = rom->contact;
+    const PetscInt  m = c->nlocal;
+    PetscCall(PetscFree3(rom->De, rom->DeMax, rom->felem));
+    PetscCall(PetscMalloc3(12 * n * c->nelem + 1, &rom->De, c->nelem + 1, &rom->DeMax, 12 * c->nelem + 1, &rom->felem));
+    for (PetscInt e = 0; e < c->nelem; e++) {
+      PetscReal *D = &rom->De[12 * n * e], mx = 0;
+      for (PetscInt k = 0; k < 12; k++) {
+        PetscInt la = c->elemLocal[24 * e + k], lb = c->elemLocal[24 * e + 12 + k];
+        for (PetscInt j = 0; j < n; j++) {
+          D[k + 12 * j] = (lb >= 0 ? PetscRealPart(rom->Vc[lb + m * j]) : 0.0) - (la >= 0 ? PetscRealPart(rom->Vc[la + m * j]) : 0.0);
+          mx            = PetscMax(mx, PetscAbsReal(D[k + 12 * j]));
+        }
+      }
+      rom->DeMax[e] = mx;
+    }
+  }
   *opp = op;
   PetscFunctionReturn(0);
 }
