@@ -322,7 +322,7 @@ typedef struct {
   PetscReal      *De;                /* 12 x n per local contact element: V_b - V_a at its node pairs (0 where clamped) */
   PetscReal      *DeMax;             /* per local contact element: max |De| */
   PetscReal      *felem;             /* 12 per local contact element: the side-b forces of the tractions */
-  PetscScalar    *work, *work2, *dK; /* scratch */
+  PetscScalar    *work, *work2, *dK, *packed; /* scratch (packed: an upper triangle) */
   BoltExactSum    sum;               /* the reductions over ranks, partition-independent */
   BoltContactSet *contact;
   /* offline figures */

@@ -36,10 +36,11 @@ PetscErrorCode BoltExactSumBegin(BoltExactSum *s, PetscInt n, PetscReal bound, P
 
 /* acc += x (n values), each split onto the two grids: (sigma + x) - sigma rounds x to the grid
    of sigma, and x minus that is exact. Must not be compiled with -ffast-math. */
-void BoltExactSumAdd(BoltExactSum *s, const PetscReal x[])
+void BoltExactSumAdd(BoltExactSum *s, const PetscReal x_[])
 {
   const PetscReal s1 = s->sigma[0], s2 = s->sigma[1];
-  PetscReal      *a1 = s->acc, *a2 = s->acc + s->n;
+  PetscReal *restrict       a1 = s->acc, *restrict a2 = s->acc + s->n;
+  const PetscReal *restrict x = x_;
 
   if (s1 == 0) return;
   for (PetscInt j = 0; j < s->n; j++) {

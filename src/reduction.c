@@ -442,7 +442,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->Vc));
   PetscCall(PetscFree(rom->Vprobe));
   PetscCall(PetscFree(rom->Ke));
-  PetscCall(PetscFree3(rom->work, rom->work2, rom->dK));
+  PetscCall(PetscFree4(rom->work, rom->work2, rom->dK, rom->packed));
   PetscCall(PetscFree3(rom->De, rom->DeMax, rom->felem));
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree3(rom->lambda0, rom->gap0, rom->active0));
