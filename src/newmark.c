@@ -18,7 +18,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
   nm->history        = BOLT_LOAD_STEP;
   nm->frequency      = 50.0;
   nm->maxOuter       = 20;
-  nm->maxInner       = 500;
+  nm->maxInner       = 5000;
   nm->tolLambda      = 1e-4;
   nm->tolPenetration = 1e-9;
   nm->inner          = 1;
