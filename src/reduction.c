@@ -213,22 +213,32 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   }
   PetscCall(PetscArraycpy(rom->active0, c->active, 4 * c->nelem));
   PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (double)nm->staticOuter, (double)nm->staticInner, c->nactive, c->ngpGlobal));
-  /* the load on top, from the preloaded state (multipliers warm, active set free to change) */
+  /* the load on top, from the preloaded state (multipliers warm, active set free to change).
+     The contact loop's tolerance is relative to the preload's multipliers, so a load below
+     1e-3 of the preload's norm is raised to that (its response then rises above the loop's
+     residual; with the joint closed the response is linear in the load, and the scale is lost
+     in the orthonormalisation anyway) */
+  PetscReal nload, npre, raise;
+  PetscCall(VecNorm(op->load, NORM_2, &nload));
+  PetscCall(VecNorm(op->preload, NORM_2, &npre));
+  raise = nload > 0 ? PetscMax(1.0, 1e-3 * npre / nload) : 1.0;
+  PetscCall(VecScale(op->load, raise));
   nm->staticWithLoad = PETSC_TRUE;
   PetscCall(BoltNewmarkPreload(nm));
+  PetscCall(VecScale(op->load, 1.0 / raise));
   PetscCall(VecDuplicate(nm->q, &extra[1]));
   PetscCall(VecWAXPY(extra[1], -1.0, extra[0], nm->q));
-  PetscCall(PetscPrintf(rom->comm, "; load response %g inner iterations\n", (double)nm->staticInner));
-  /* closed-contact Krylov vectors: w_k = static response, from the preloaded state, to M w_(k-1)
-     scaled to the load's norm, so the basis holds the closed joint's low-frequency shapes too;
-     at most 1e-3 of the preload's norm, so that a large scene load does not open the joint here
-     (the shapes are those of the closed joint, and their scale is lost in the orthonormalisation) */
+  PetscCall(VecScale(extra[1], 1.0 / raise));
+  PetscCall(PetscPrintf(rom->comm, "; load response (load x %g) %g inner iterations\n", (double)raise, (double)nm->staticInner));
+  /* closed-contact Krylov vectors: w_k = static response, from the preloaded state, to M w_(k-1),
+     so the basis holds the closed joint's low-frequency shapes too. Forced at 1e-3 of the
+     preload's norm: small enough that the joint stays closed, large enough to rise above the
+     contact loop's residual (the shapes are those of the closed joint; their scale is lost in
+     the orthonormalisation) */
   if (nClosed > 0) {
     Vec       f;
-    PetscReal nload, npre, nforce, nf;
-    PetscCall(VecNorm(op->load, NORM_2, &nload));
-    PetscCall(VecNorm(op->preload, NORM_2, &npre));
-    nforce = PetscMin(nload, 1e-3 * npre);
+    PetscReal nforce, nf;
+    nforce = 1e-3 * npre;
     PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)nforce, (double)nload, (double)npre));
     PetscCall(VecDuplicate(op->load, &f));
     PetscCall(VecDestroy(&op->load));

@@ -24,7 +24,8 @@ static PetscErrorCode BoltFileHash(MPI_Comm comm, const char path[], unsigned lo
   PetscFunctionReturn(0);
 }
 
-/* A readable description of everything the basis depends on; the load is checked apart (a file
+/* A readable description of everything the basis depends on, with the version of its recipe
+   ("format": 7 since the load response is forced at 1e-3 of the preload at least); the load is checked apart (a file
    built for one load may serve another at a point whose rows it keeps, if the user asks). */
 PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, PetscInt order, PetscReal s0, PetscReal defl, PetscInt nCCM, PetscInt nJIM, char fp[], size_t len)
 {
@@ -34,7 +35,7 @@ PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLo
 
   PetscFunctionBeginUser;
   PetscCall(BoltFileHash(m->comm, m->filename, &h));
-  PetscCall(PetscSNPrintf(fp, len, "format 6; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
+  PetscCall(PetscSNPrintf(fp, len, "format 7; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
   for (PetscInt p = 0; p < m->nparts; p++) {
     const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
     PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g %.6g %.6g", m->partName[p], (double)mat->E, (double)mat->nu, (double)mat->rho));

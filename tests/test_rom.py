@@ -92,9 +92,9 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
     print("preloaded probe: FOM", fom[0], "ROM", rom[0], "; e_L2", s["errors"]["load_point"]["e_L2"])
     # the penalty law alone started 7 times further down (README). The offline phase takes the FOM
     # run's own preloaded state, so the start is the FOM's to the round-off of the reduced system
-    # under its near-hard penalty (measured 1e-9 of the scale; 2e-6 when it was solved again)
+    # under its near-hard penalty (measured 3e-10 of the scale; 2e-6 when it was solved again)
     assert abs(rom[0] - fom[0]) <= 1e-7 * scale
-    assert s["errors"]["load_point"]["e_L2"] < 4e-3  # measured 2.7e-3 (paper: 3.5e-3 at its level)
+    assert s["errors"]["load_point"]["e_L2"] < 4e-3  # measured 2.2e-3 (2.7e-3 before session 9; paper: 3.5e-3 at its level)
     from_file = {}
     for ranks in (1, 3):
         d = tmp_path / f"np{ranks}"
@@ -103,7 +103,7 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
         with h5py.File(d / "joint.h5") as f:
             from_file[ranks] = f["/rom/probe"][...]
         # a state matched to the wrong elements is off by percents; the file's state (per newton of
-        # preload) against the building run's own is 1.5e-11 of the scale apart (measured)
+        # preload) against the building run's own is 1.5e-11 to 4.6e-11 of the scale apart (measured)
         print(ranks, "ranks: largest difference from the building run", np.abs(from_file[ranks] - rom).max() / scale)
         assert np.abs(from_file[ranks] - rom).max() <= 1e-10 * scale, ranks
     # The reduced sums over ranks are exact (BoltExactSum), so no round-off is left for the
@@ -199,6 +199,25 @@ def test_eigenfrequencies_full_and_reduced(joint_small, tmp_path):
     assert np.allclose(fom, own, rtol=1e-5)
     assert np.all(rom >= fom * (1 - 1e-9))
     assert rom[0] <= 1.02 * fom[0]
+
+
+def test_rom_under_a_small_load(joint_small, tmp_path):
+    """0.1 N at the tip, 2e5 times below the preload. The offline load response and closed-contact
+    Krylov vectors are static solves from the preloaded state, converged to a tolerance relative to
+    the preload's multipliers; forced at 0.1 N their shapes were mostly that residual, and the ROM
+    was 1.4 % off (README, fix of session 9). They are now forced at 1e-3 of the preload's norm
+    at least (the load 284 times here), and the ROM is within 1 % (measured 0.37 %)."""
+    from conftest import run_boltrom
+    mesh, _ = joint_small
+    args = ["-mesh", mesh] + ROM + ["-fom", "-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "1", "-ts_dt", "1e-4",
+                                    "-ts_end", "0.01", "-load_force", "0.1", "-output_dir", tmp_path / "a", "-summary", tmp_path / "a.json"]
+    proc = run_boltrom(args, ranks=2)
+    s = json.loads((tmp_path / "a.json").read_text())
+    raised = float(re.search(r"load response \(load x (\S+)\)", proc.stdout).group(1))
+    force, preload = (float(x) for x in re.search(r"closed-contact Krylov forcing of norm (\S+) \(load \S+, preload (\S+)\)", proc.stdout).groups())
+    assert raised == pytest.approx(1e-3 * preload / 0.1, rel=1e-6) and force == pytest.approx(1e-3 * preload, rel=1e-6)
+    print("0.1 N: e_L2", s["errors"]["load_point"]["e_L2"])
+    assert s["errors"]["load_point"]["e_L2"] < 0.01
 
 
 def test_rom_where_the_load_opens_the_joint(joint_small, tmp_path):
