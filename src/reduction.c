@@ -190,10 +190,14 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscFunctionBeginUser;
   PetscCall(BoltContactSetResetState(c));
   PetscCall(BoltFOMCreate(asmb, c, loads, &op));
-  /* the calibration scales the preload vector: work on a copy, the scene's stays as it is */
+  /* the calibration scales the preload vector and the load response may scale the load: work
+     on copies, the scene's stay as they are */
   PetscCall(VecDestroy(&op->preload));
   PetscCall(VecDuplicate(loads->preload, &op->preload));
   PetscCall(VecCopy(loads->preload, op->preload));
+  PetscCall(VecDestroy(&op->load));
+  PetscCall(VecDuplicate(loads->load, &op->load));
+  PetscCall(VecCopy(loads->load, op->load));
   PetscCall(BoltNewmarkCreate(op, &nm));
   PetscCall(BoltNewmarkSetFromOptions(nm));
   nm->preloadTarget = F;
@@ -225,7 +229,6 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(VecScale(op->load, raise));
   nm->staticWithLoad = PETSC_TRUE;
   PetscCall(BoltNewmarkPreload(nm));
-  PetscCall(VecScale(op->load, 1.0 / raise));
   PetscCall(VecDuplicate(nm->q, &extra[1]));
   PetscCall(VecWAXPY(extra[1], -1.0, extra[0], nm->q));
   PetscCall(VecScale(extra[1], 1.0 / raise));

@@ -103,9 +103,10 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
         with h5py.File(d / "joint.h5") as f:
             from_file[ranks] = f["/rom/probe"][...]
         # a state matched to the wrong elements is off by percents; the file's state (per newton of
-        # preload) against the building run's own is 1.5e-11 to 4.6e-11 of the scale apart (measured)
+        # preload) against the building run's own is 1.5e-11 to 8e-11 of the scale apart (measured
+        # over seven builds; the 2-rank build's partition is PT-Scotch's, not repeatable)
         print(ranks, "ranks: largest difference from the building run", np.abs(from_file[ranks] - rom).max() / scale)
-        assert np.abs(from_file[ranks] - rom).max() <= 1e-10 * scale, ranks
+        assert np.abs(from_file[ranks] - rom).max() <= 1e-9 * scale, ranks
     # The reduced sums over ranks are exact (BoltExactSum), so no round-off is left for the
     # near-hard penalty (condition number ~1e9) to lift: one file gives the same bits on 1 and 3
     # ranks. Before, the histories were 3e-8..7e-8 of the scale apart (README)
