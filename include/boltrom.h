@@ -159,6 +159,7 @@ PetscErrorCode BoltContactSetScatter(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetGaps(BoltContactSet *);
 PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
 PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[]);
+void           BoltContactElementForces(BoltContactSet *, PetscInt, const PetscReal[], PetscReal[12]);
 PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, const PetscReal[], PetscReal[]);
 PetscErrorCode BoltContactSetDot(BoltContactSet *, const PetscReal[], const PetscReal[], PetscReal *);
 PetscErrorCode BoltContactSetPenetration(BoltContactSet *, PetscReal[], PetscReal *);
@@ -323,6 +324,8 @@ typedef struct {
   PetscReal      *DeMax;             /* per local contact element: max |De| */
   PetscReal      *felem;             /* 12 per local contact element: the side-b forces of the tractions */
   PetscScalar    *work, *work2, *dK, *packed; /* scratch (packed: an upper triangle) */
+  PetscReal      *dMe;               /* 144 per local contact element: scratch of the K_cr update */
+  PetscInt       *dirtyElems;        /* per local contact element: scratch of the K_cr update */
   BoltExactSum    sum;               /* the reductions over ranks, partition-independent */
   BoltContactSet *contact;
   /* offline figures */

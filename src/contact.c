@@ -695,25 +695,35 @@ PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[
   PetscFunctionReturn(0);
 }
 
+/* The nodal forces sum_q w N_a lambda_q of element e's Gauss-point tractions on its side-b nodes
+   (3 per node, 12); side a takes their opposite. */
+void BoltContactElementForces(BoltContactSet *c, PetscInt e, const PetscReal lambda[], PetscReal fb[12])
+{
+  for (PetscInt k = 0; k < 12; k++) fb[k] = 0;
+  for (PetscInt q = 0; q < 4; q++) {
+    const PetscInt   gp = 4 * e + q;
+    const PetscReal *N = &c->gpN[16 * e + 4 * q], *lam = &lambda[3 * gp], w = c->gpW[gp];
+    if (lam[0] == 0 && lam[1] == 0 && lam[2] == 0) continue;
+    for (PetscInt a = 0; a < 4; a++)
+      for (PetscInt k = 0; k < 3; k++) fb[3 * a + k] += w * N[a] * lam[k];
+  }
+}
+
 static PetscErrorCode BoltContactForcesInto(BoltContactSet *c, const PetscReal lambda[], Vec fc)
 {
   PetscScalar *f;
+  PetscReal    fb[12];
 
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(fc));
   PetscCall(VecGetArray(fc, &f));
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt *loc = &c->elemLocal[24 * e];
-    for (PetscInt q = 0; q < 4; q++) {
-      PetscInt         gp = 4 * e + q;
-      const PetscReal *N = &c->gpN[16 * e + 4 * q], *lam = &lambda[3 * gp], w = c->gpW[gp];
-      if (lam[0] == 0 && lam[1] == 0 && lam[2] == 0) continue;
-      for (PetscInt a = 0; a < 4; a++)
-        for (PetscInt k = 0; k < 3; k++) {
-          PetscInt ia = loc[3 * a + k], ib = loc[12 + 3 * a + k];
-          if (ia >= 0) f[ia] -= w * N[a] * lam[k];
-          if (ib >= 0) f[ib] += w * N[a] * lam[k];
-        }
+    BoltContactElementForces(c, e, lambda, fb);
+    for (PetscInt k = 0; k < 12; k++) {
+      PetscInt ia = loc[k], ib = loc[12 + k];
+      if (ia >= 0) f[ia] -= fb[k];
+      if (ib >= 0) f[ib] += fb[k];
     }
   }
   PetscCall(VecRestoreArray(fc, &f));

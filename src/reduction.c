@@ -239,13 +239,9 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
      contact loop's residual (the shapes are those of the closed joint; their scale is lost in
      the orthonormalisation) */
   if (nClosed > 0) {
-    Vec       f;
-    PetscReal nforce, nf;
-    nforce = 1e-3 * npre;
+    Vec       f      = op->load; /* this solve's own copy: the forcing of each vector in turn */
+    PetscReal nforce = 1e-3 * npre, nf;
     PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)nforce, (double)nload, (double)npre));
-    PetscCall(VecDuplicate(op->load, &f));
-    PetscCall(VecDestroy(&op->load));
-    op->load = f;
     for (PetscInt k = 0; k < nClosed; k++) {
       PetscCall(MatMult(asmb->M, extra[1 + k], f));
       PetscCall(VecNorm(f, NORM_2, &nf));
@@ -456,7 +452,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->Vprobe));
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscFree4(rom->work, rom->work2, rom->dK, rom->packed));
-  PetscCall(PetscFree3(rom->De, rom->DeMax, rom->felem));
+  PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree3(rom->lambda0, rom->gap0, rom->active0));
   PetscCall(PetscFree(*romp));

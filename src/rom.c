@@ -54,14 +54,7 @@ static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscReal *f = &rom->felem[12 * e], size = 0;
-    for (PetscInt k = 0; k < 12; k++) f[k] = 0;
-    for (PetscInt q = 0; q < 4; q++) {
-      const PetscInt   gp = 4 * e + q;
-      const PetscReal *N = &c->gpN[16 * e + 4 * q], *lam = &lambda[3 * gp], w = c->gpW[gp];
-      if (lam[0] == 0 && lam[1] == 0 && lam[2] == 0) continue;
-      for (PetscInt a = 0; a < 4; a++)
-        for (PetscInt k = 0; k < 3; k++) f[3 * a + k] += w * N[a] * lam[k];
-    }
+    BoltContactElementForces(c, e, lambda, f);
     for (PetscInt k = 0; k < 12; k++) size += PetscAbsReal(f[k]);
     bound = PetscMax(bound, rom->DeMax[e] * size);
   }
@@ -88,8 +81,8 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
   BoltROM        *rom = (BoltROM *)op->ctx;
   BoltContactSet *c   = rom->contact;
   const PetscInt  n   = rom->n;
-  PetscInt        ndirty = 0, *dirty;
-  PetscReal       bound = 0, *delta, *T = rom->work2, *dK = rom->dK, Knew[576];
+  PetscInt        ndirty = 0, *dirty = rom->dirtyElems;
+  PetscReal       bound = 0, *delta = rom->dMe, *T = rom->work2, *dK = rom->dK, Knew[576];
   PetscScalar    *K;
 
   PetscFunctionBeginUser;
@@ -98,9 +91,6 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
      no gap the penalty's round-off (through K_e it would be about eps_N |V|^2 u, large under a
      near-hard penalty against the joint's soft stiffness). First the change of M of every
      element whose points changed, and a bound of its reduced part for the exact sum */
-  for (PetscInt e = 0; e < c->nelem; e++) ndirty += c->dirty[e] ? 1 : 0;
-  PetscCall(PetscMalloc2(144 * ndirty + 1, &delta, ndirty + 1, &dirty));
-  ndirty = 0;
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscReal *d = &delta[144 * ndirty], size = 0;
     if (!c->dirty[e]) continue;
@@ -142,7 +132,6 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
     PetscCall(MatAssemblyBegin(rom->Kcr, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(rom->Kcr, MAT_FINAL_ASSEMBLY));
   }
-  PetscCall(PetscFree2(delta, dirty));
   *Kc = rom->Kcr;
   PetscFunctionReturn(0);
 }
@@ -211,8 +200,8 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   {
     BoltContactSet *c = rom->contact;
     const PetscInt  m = c->nlocal;
-    PetscCall(PetscFree3(rom->De, rom->DeMax, rom->felem));
-    PetscCall(PetscMalloc3(12 * n * c->nelem + 1, &rom->De, c->nelem + 1, &rom->DeMax, 12 * c->nelem + 1, &rom->felem));
+    PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
+    PetscCall(PetscMalloc5(12 * n * c->nelem + 1, &rom->De, c->nelem + 1, &rom->DeMax, 12 * c->nelem + 1, &rom->felem, 144 * c->nelem + 1, &rom->dMe, c->nelem + 1, &rom->dirtyElems));
     for (PetscInt e = 0; e < c->nelem; e++) {
       PetscReal *D = &rom->De[12 * n * e], mx = 0;
       for (PetscInt k = 0; k < 12; k++) {
