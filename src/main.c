@@ -330,6 +330,7 @@ static PetscErrorCode BoltRun(void)
     PetscCall(BoltNewmarkView(fomNm, out));
     /* at 562k DOFs the FOM's factorisation and the offline phase's two would not fit in memory together */
     PetscCall(BoltNewmarkReleaseSolver(fomNm));
+    PetscCall(MatDestroy(&fomOp->C)); /* the FOM has run: its damping is not needed any more */
   }
   if (opt.rom) {
     BoltReductionOptions ropt;

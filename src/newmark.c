@@ -645,13 +645,14 @@ PetscErrorCode BoltNewmarkView(BoltNewmark *nm, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* After the run: frees the factorisation and the effective matrix, keeping the histories and
+/* After the run: frees the factorisation and the effective matrices, keeping the histories and
    the final state (a run that is over does not need them; they are the largest part of it). */
 PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *nm)
 {
   PetscFunctionBeginUser;
   PetscCall(KSPReset(nm->ksp));
   PetscCall(MatDestroy(&nm->Keff));
+  PetscCall(MatDestroy(&nm->K0));
   PetscFunctionReturn(0);
 }
 
