@@ -292,7 +292,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
 
 /* fom.c: the full-order operator */
-PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltOperator **);
+PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscBool, BoltOperator **);
 PetscErrorCode BoltFOMDestroy(BoltOperator **);
 
 /* ------------------------------------------------------------------ exact_sum.c */

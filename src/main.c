@@ -305,7 +305,7 @@ static PetscErrorCode BoltRun(void)
   if (opt.fom) {
     PetscReal force[BOLTROM_MAX_PAIRS];
     PetscCall(BoltContactSetResetState(contact));
-    PetscCall(BoltFOMCreate(asmb, contact, loads, &fomOp));
+    PetscCall(BoltFOMCreate(asmb, contact, loads, PETSC_TRUE, &fomOp));
     PetscCall(BoltNewmarkCreate(fomOp, &fomNm));
     PetscCall(PetscSNPrintf(fomNm->checkpointBase, sizeof(fomNm->checkpointBase), "%s/%s", opt.outputDir, opt.outputName));
     PetscCall(BoltNewmarkSetFromOptions(fomNm));

@@ -189,10 +189,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactSetResetState(c));
-  PetscCall(BoltFOMCreate(asmb, c, loads, &op));
-  /* static solves only: no damping (at 562k DOFs every copy of the stiffness's pattern costs
-     1.5 GB, and the offline phase after a FOM run ran out of the machine's 24 GB) */
-  PetscCall(MatDestroy(&op->C));
+  PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &op)); /* static solves only: no damping */
   /* the calibration scales the preload vector and the load response may scale the load: work
      on copies, the scene's stay as they are */
   PetscCall(VecDestroy(&op->preload));
