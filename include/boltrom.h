@@ -23,6 +23,7 @@ typedef struct {
 } BoltLog;
 extern BoltLog boltLog;
 PetscErrorCode BoltLogRegister(void);
+PetscErrorCode BoltMemoryPrint(MPI_Comm, const char[]);
 
 /* ------------------------------------------------------------------ material.c */
 typedef struct {
@@ -240,10 +241,10 @@ typedef struct {
   PetscBool       calibratePreload;
   PetscReal       preloadTarget, preloadScale;
   PetscBool       calibrating; /* in the preload's dual loop: each outer iteration scales to the target clamping force */
-  Mat             K0, Keff;
+  Mat             Keff;
   KSP             ksp;
   PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */
-  PetscBool       dynamic; /* K0 holds a1 M + a4 C + K (else K: static) */
+  PetscBool       dynamic; /* K_eff is built of a1 M + a4 C + K (else K: static) */
   Vec             q, v, acc, rhs, Fc, work;
   PetscInt        nsteps, step;
   PetscReal      *probeTime, *probeValue, *energy;

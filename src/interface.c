@@ -270,6 +270,7 @@ PetscErrorCode BoltInterfaceBuild(BoltContactSet *c, Mat M, Mat C, Mat K, PetscR
   PetscCall(PetscTime(&t2));
   ir->tKrylov = t2 - t1;
   PetscCall(PetscPrintf(ir->comm, "Interface reduction: %" PetscInt_FMT " interface DOFs -> %" PetscInt_FMT " (CCM %" PetscInt_FMT " of %" PetscInt_FMT ", JIM %" PetscInt_FMT " of %" PetscInt_FMT "), %.2f s factorisations, %.2f s Krylov and Schur complement\n", ir->nI, ir->nIR, ir->rankCCM, nCCM, ir->rankJIM, nJIM, (double)ir->tFactor, (double)ir->tKrylov));
+  PetscCall(BoltMemoryPrint(ir->comm, "the interface reduction"));
   *irp = ir;
   PetscFunctionReturn(0);
 }

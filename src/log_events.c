@@ -1,4 +1,5 @@
 /* Every -log_view event and stage of boltrom, registered once. */
+#include <sys/resource.h>
 #include "boltrom.h"
 
 BoltLog boltLog;
@@ -37,5 +38,23 @@ PetscErrorCode BoltLogRegister(void)
   PetscCall(PetscLogStageRegister("Static solve", &boltLog.stageStatic));
   PetscCall(PetscLogStageRegister("Modal solve", &boltLog.stageModal));
   PetscCall(PetscLogStageRegister("Output", &boltLog.stageOutput));
+  PetscFunctionReturn(0);
+}
+
+/* Resident memory of the largest rank, now and at its peak so far, in GB. Printed after the
+   phases that hold FOM-sized factorisations: a big mesh shows where it stands before it runs
+   out of memory, not after. */
+PetscErrorCode BoltMemoryPrint(MPI_Comm comm, const char phase[])
+{
+  PetscLogDouble now, mine[2], most[2];
+  struct rusage  ru;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemoryGetCurrentUsage(&now));
+  PetscCheck(getrusage(RUSAGE_SELF, &ru) == 0, PETSC_COMM_SELF, PETSC_ERR_SYS, "getrusage failed");
+  mine[0] = now / 1073741824.0;
+  mine[1] = PetscMax(now, 1024.0 * (PetscLogDouble)ru.ru_maxrss) / 1073741824.0; /* Linux: kB */
+  PetscCall(MPIU_Allreduce(mine, most, 2, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCall(PetscPrintf(comm, "Memory after %s: %.2f GB resident, peak %.2f GB (largest rank)\n", phase, most[0], most[1]));
   PetscFunctionReturn(0);
 }

@@ -319,6 +319,7 @@ static PetscErrorCode BoltRun(void)
     for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(PetscPrintf(comm, " %s %.6f", contact->pairName[p], (double)force[p]));
     PetscCall(PetscPrintf(comm, "\n"));
     for (PetscInt p = 0; p < contact->npairs; p++) preloadForce[p] = force[p];
+    PetscCall(BoltMemoryPrint(comm, "the FOM's preload"));
     PetscCall(BoltContactSetTractionStats(contact, &tractionStats[0], &tractionStats[1], &tractionStats[2]));
     preloadActive = contact->nactive;
     staticPenetration = fomNm->lastPenetration;
@@ -331,6 +332,7 @@ static PetscErrorCode BoltRun(void)
     /* at 562k DOFs the FOM's factorisation and the offline phase's two would not fit in memory together */
     PetscCall(BoltNewmarkReleaseSolver(fomNm));
     PetscCall(MatDestroy(&fomOp->C)); /* the FOM has run: its damping is not needed any more */
+    PetscCall(BoltMemoryPrint(comm, "the FOM run (its solver released)"));
   }
   if (opt.rom) {
     BoltReductionOptions ropt;

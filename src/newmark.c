@@ -102,14 +102,13 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
     PetscCall(PetscCalloc1(n, &nm->snapTime));
     PetscCall(VecDuplicateVecs(nm->q, n, &nm->snap));
   }
-  /* K0 gets the union of the structural and the contact pattern once, so that K_eff = K0 + K_c
-     keeps one pattern and MUMPS repeats only the numeric factorisation */
+  /* K_eff gets the union of the structural and the contact pattern once, so that it keeps one
+     pattern and MUMPS repeats only the numeric factorisation */
   PetscCall(op->contactStiffness(op, &Kc));
   PetscCall(MatDuplicate(Kc, MAT_DO_NOT_COPY_VALUES, &Z));
-  PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &nm->K0));
-  PetscCall(MatAXPY(nm->K0, 1.0, Z, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &nm->Keff));
+  PetscCall(MatAXPY(nm->Keff, 1.0, Z, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatDestroy(&Z));
-  PetscCall(MatDuplicate(nm->K0, MAT_COPY_VALUES, &nm->Keff));
   PetscCall(KSPCreate(PetscObjectComm((PetscObject)op->K), &nm->ksp)); /* the matrices' communicator */
   PetscCall(KSPSetOptionsPrefix(nm->ksp, op->prefix));
   PetscCall(KSPSetType(nm->ksp, KSPPREONLY));
@@ -126,22 +125,6 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscFunctionReturn(0);
 }
 
-/* K0 = K (static) or a1 M + a4 C + K (dynamic), in the pattern fixed at set-up. */
-static PetscErrorCode BoltNewmarkSetK0(BoltNewmark *nm, PetscBool dynamic)
-{
-  BoltOperator *op = nm->op;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatZeroEntries(nm->K0));
-  PetscCall(MatAXPY(nm->K0, 1.0, op->K, SUBSET_NONZERO_PATTERN));
-  if (dynamic) {
-    PetscCall(MatAXPY(nm->K0, nm->a[1], op->M, SUBSET_NONZERO_PATTERN));
-    PetscCall(MatAXPY(nm->K0, nm->a[4], op->C, SUBSET_NONZERO_PATTERN));
-  }
-  nm->dynamic = dynamic;
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode BoltNewmarkFactor(BoltNewmark *nm)
 {
   BoltOperator  *op = nm->op;
@@ -152,7 +135,14 @@ static PetscErrorCode BoltNewmarkFactor(BoltNewmark *nm)
   PetscCall(PetscTime(&t0));
   PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
   PetscCall(op->contactStiffness(op, &Kc));
-  PetscCall(MatCopy(nm->K0, nm->Keff, SAME_NONZERO_PATTERN));
+  /* summed afresh in the pattern fixed at set-up, in the order a kept copy of the structural
+     part would give (no FOM-sized copy of it is held: at 562k DOFs memory is the limit) */
+  PetscCall(MatZeroEntries(nm->Keff));
+  PetscCall(MatAXPY(nm->Keff, 1.0, op->K, SUBSET_NONZERO_PATTERN));
+  if (nm->dynamic) {
+    PetscCall(MatAXPY(nm->Keff, nm->a[1], op->M, SUBSET_NONZERO_PATTERN));
+    PetscCall(MatAXPY(nm->Keff, nm->a[4], op->C, SUBSET_NONZERO_PATTERN));
+  }
   PetscCall(MatAXPY(nm->Keff, 1.0, Kc, SUBSET_NONZERO_PATTERN));
   PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
@@ -521,7 +511,7 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
 
   PetscFunctionBeginUser;
   nm->op->contact->augment = nm->op->augment; /* the contact set serves FOM and ROM: this model's law */
-  PetscCall(BoltNewmarkSetK0(nm, PETSC_FALSE));
+  nm->dynamic = PETSC_FALSE; /* the next factorisations: K + K_c */
   nm->step = 0;
   nm->preloadScale = 1.0;
   nm->calibrating  = (nm->calibratePreload && nm->preloadTarget > 0 && !nm->staticWithLoad) ? PETSC_TRUE : PETSC_FALSE;
@@ -576,7 +566,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(VecDuplicate(nm->q, &qOld));
-  PetscCall(BoltNewmarkSetK0(nm, PETSC_TRUE));
+  nm->dynamic = PETSC_TRUE; /* the next factorisations: a1 M + a4 C + K + K_c */
   nm->tOnlineBefore = nm->tCheckpoint = 0;
   /* counters from here on describe the transient; the static solve keeps its own */
   nm->staticFactorizations = nm->factorizations;
@@ -652,7 +642,6 @@ PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *nm)
   PetscFunctionBeginUser;
   PetscCall(KSPReset(nm->ksp));
   PetscCall(MatDestroy(&nm->Keff));
-  PetscCall(MatDestroy(&nm->K0));
   PetscFunctionReturn(0);
 }
 
@@ -726,7 +715,6 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   PetscCall(VecDestroy(&nm->qp));
   PetscCall(VecDestroy(&nm->FcLambda));
   PetscCall(PetscFree3(nm->cgR, nm->cgP, nm->cgAp));
-  PetscCall(MatDestroy(&nm->K0));
   PetscCall(MatDestroy(&nm->Keff));
   PetscCall(KSPDestroy(&nm->ksp));
   PetscCall(PetscFree3(nm->probeTime, nm->probeValue, nm->energy));

@@ -376,11 +376,18 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(BoltKrylovBuild(kry, asmb->M, C, asmb->K, B, &V));
   PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
   PetscCall(BoltInterfaceDestroy(&ir)); /* its factorisations are not needed from here on */
+  PetscCall(BVDestroy(&B));
+  PetscCall(BoltMemoryPrint(o->comm, "the Krylov basis"));
   if (rom->preloadState) {
     Vec      extra[18];
     PetscInt added, nextra = 2 + o->nClosed;
     PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
+    /* the static solves factor the FOM: the damping matrix is rebuilt after them rather than held
+       through them (at 562k DOFs the two did not fit in 24 GB together) */
+    PetscCall(MatDestroy(&C));
     PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, o->fomPreload, extra, &preloadCalibrated));
+    PetscCall(BoltMemoryPrint(o->comm, "the preloaded state's static solves"));
+    PetscCall(BoltAssemblerDamping(asmb, &C));
     PetscCall(BoltBasisAppend(V, nextra, extra, &added));
     for (PetscInt k = 0; k < nextra; k++) PetscCall(VecDestroy(&extra[k]));
     PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
@@ -428,7 +435,6 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
   if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file, rom->fingerprint));
   PetscCall(BoltKrylovDestroy(&kry));
-  PetscCall(BVDestroy(&B));
   PetscCall(BVDestroy(&V));
   PetscCall(MatDestroy(&C));
   *romp = rom;
