@@ -24,6 +24,7 @@ typedef struct {
 extern BoltLog boltLog;
 PetscErrorCode BoltLogRegister(void);
 PetscErrorCode BoltMemoryPrint(MPI_Comm, const char[]);
+PetscErrorCode BoltMemoryRelease(void);
 
 /* ------------------------------------------------------------------ material.c */
 typedef struct {

@@ -1,5 +1,8 @@
 /* Every -log_view event and stage of boltrom, registered once. */
 #include <sys/resource.h>
+#if defined(__GLIBC__)
+  #include <malloc.h>
+#endif
 #include "boltrom.h"
 
 BoltLog boltLog;
@@ -56,5 +59,17 @@ PetscErrorCode BoltMemoryPrint(MPI_Comm comm, const char phase[])
   mine[1] = PetscMax(now, 1024.0 * (PetscLogDouble)ru.ru_maxrss) / 1073741824.0; /* Linux: kB */
   PetscCall(MPIU_Allreduce(mine, most, 2, MPI_DOUBLE, MPI_MAX, comm));
   PetscCall(PetscPrintf(comm, "Memory after %s: %.2f GB resident, peak %.2f GB (largest rank)\n", phase, most[0], most[1]));
+  PetscFunctionReturn(0);
+}
+
+/* Hands the heap's free pages back to the system after a FOM-sized structure is destroyed. glibc
+   keeps freed memory in its heap for reuse, and the next FOM-sized factorisation does not always
+   fit in it: without this a run that has freed its factorisation still counts it as resident. */
+PetscErrorCode BoltMemoryRelease(void)
+{
+  PetscFunctionBeginUser;
+#if defined(__GLIBC__)
+  (void)malloc_trim(0);
+#endif
   PetscFunctionReturn(0);
 }

@@ -332,6 +332,7 @@ static PetscErrorCode BoltRun(void)
     /* at 562k DOFs the FOM's factorisation and the offline phase's two would not fit in memory together */
     PetscCall(BoltNewmarkReleaseSolver(fomNm));
     PetscCall(MatDestroy(&fomOp->C)); /* the FOM has run: its damping is not needed any more */
+    PetscCall(BoltMemoryRelease());
     PetscCall(BoltMemoryPrint(comm, "the FOM run (its solver released)"));
   }
   if (opt.rom) {
