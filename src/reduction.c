@@ -377,16 +377,15 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
   PetscCall(BoltInterfaceDestroy(&ir)); /* its factorisations are not needed from here on */
   PetscCall(BVDestroy(&B));
+  /* the preloaded state's static solves factor the FOM: the damping matrix is rebuilt after them
+     rather than held through them (at 562k DOFs the two did not fit in 24 GB together) */
+  if (rom->preloadState) PetscCall(MatDestroy(&C));
   PetscCall(BoltMemoryRelease());
   PetscCall(BoltMemoryPrint(o->comm, "the Krylov basis"));
   if (rom->preloadState) {
     Vec      extra[18];
     PetscInt added, nextra = 2 + o->nClosed;
     PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
-    /* the static solves factor the FOM: the damping matrix is rebuilt after them rather than held
-       through them (at 562k DOFs the two did not fit in 24 GB together) */
-    PetscCall(MatDestroy(&C));
-    PetscCall(BoltMemoryRelease());
     PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, o->fomPreload, extra, &preloadCalibrated));
     PetscCall(BoltMemoryPrint(o->comm, "the preloaded state's static solves"));
     PetscCall(BoltAssemblerDamping(asmb, &C));
