@@ -362,6 +362,7 @@ typedef struct {
   PetscReal  penaltyScale;                  /* -rom_contact_penalty_scale, or 0 for the default */
   PetscReal  bandScale;                     /* -rom_contact_band_scale, or 0 for the default */
   PetscInt   nClosed;                       /* -rom_closed_krylov */
+  PetscReal  staticPenaltyScale;            /* -rom_static_penalty_scale */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;
 
