@@ -169,6 +169,8 @@ PetscErrorCode BoltContactSetAugment(BoltContactSet *, PetscReal *, PetscReal *)
 PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *, PetscInt *, PetscBool *);
 PetscErrorCode BoltContactSetCloseCycle(BoltContactSet *, PetscInt *);
 PetscErrorCode BoltContactSetSetActive(BoltContactSet *, const PetscBool[]);
+PetscErrorCode BoltContactSetScalePenalties(BoltContactSet *, PetscReal, PetscReal[]);
+PetscErrorCode BoltContactSetRestorePenalties(BoltContactSet *, const PetscReal[]);
 PetscErrorCode BoltContactSetForces(BoltContactSet *);
 PetscErrorCode BoltContactSetStiffness(BoltContactSet *, Mat *);
 PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *, PetscReal[]);

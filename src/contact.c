@@ -640,6 +640,33 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
   PetscFunctionReturn(0);
 }
 
+/* Scales every pair's penalties by s, keeping the current ones in saved[2 * npairs] (normal,
+   tangential) so that RestorePenalties puts back the very same values; every element is due for
+   a stiffness update either way. */
+PetscErrorCode BoltContactSetScalePenalties(BoltContactSet *c, PetscReal s, PetscReal saved[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt p = 0; p < c->npairs; p++) {
+    saved[2 * p]     = c->epsN[p];
+    saved[2 * p + 1] = c->epsT[p];
+    c->epsN[p] *= s;
+    c->epsT[p] *= s;
+  }
+  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactSetRestorePenalties(BoltContactSet *c, const PetscReal saved[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt p = 0; p < c->npairs; p++) {
+    c->epsN[p] = saved[2 * p];
+    c->epsT[p] = saved[2 * p + 1];
+  }
+  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* Puts a given active set in place (a stored preloaded state): the sets of the last two outer
    iterations are taken to be the same, and every element is due for a stiffness update. */
 PetscErrorCode BoltContactSetSetActive(BoltContactSet *c, const PetscBool active[])

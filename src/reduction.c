@@ -188,7 +188,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
 {
   BoltOperator *op;
   BoltNewmark  *nm;
-  PetscReal     F = loads->preloadForce;
+  PetscReal     F = loads->preloadForce, epsFOM[2 * BOLTROM_MAX_PAIRS];
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactSetResetState(c));
@@ -224,11 +224,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
      penalty clusters the multiplier CG's operator B (K + eps B'B)^-1 B' near 1/eps: at level 1.8
      the first closed-contact vector took 1425 iterations at the FOM's penalty. The preload itself
      stays the FOM's. */
-  for (PetscInt p = 0; p < c->npairs; p++) {
-    c->epsN[p] *= staticPenaltyScale;
-    c->epsT[p] *= staticPenaltyScale;
-  }
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
+  PetscCall(BoltContactSetScalePenalties(c, staticPenaltyScale, epsFOM));
   PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (double)nm->staticOuter, (double)nm->staticInner, c->nactive, c->ngpGlobal));
   /* the load on top, from the preloaded state (multipliers warm, active set free to change).
      The contact loop's tolerance is relative to the preload's multipliers, so a load below
@@ -266,10 +262,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
       PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov vector %" PetscInt_FMT ": %g inner iterations\n", k + 1, (double)nm->staticInner));
     }
   }
-  for (PetscInt p = 0; p < c->npairs; p++) {
-    c->epsN[p] /= staticPenaltyScale;
-    c->epsT[p] /= staticPenaltyScale;
-  }
+  PetscCall(BoltContactSetRestorePenalties(c, epsFOM));
   PetscCall(BoltNewmarkDestroy(&nm));
   PetscCall(BoltFOMDestroy(&op));
   PetscCall(BoltContactSetResetState(c));

@@ -180,22 +180,18 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   op->contactStiffness     = ROMContactStiffness;
   op->probe                = ROMProbe;
   /* the ROM's own penalties and activation band, restored when the operator goes */
+  PetscCall(BoltContactSetScalePenalties(rom->contact, rom->penaltyScale, rom->epsSaved));
   for (PetscInt p = 0; p < rom->contact->npairs; p++) {
-    rom->epsSaved[2 * p]     = rom->contact->epsN[p];
-    rom->epsSaved[2 * p + 1] = rom->contact->epsT[p];
     rom->epsSaved[2 * BOLTROM_MAX_PAIRS + p] = rom->contact->bandTraction[p];
-    rom->contact->epsN[p] *= rom->penaltyScale;
-    rom->contact->epsT[p] *= rom->penaltyScale;
     rom->contact->bandTraction[p] *= rom->bandScale;
   }
-  /* K_cr starts empty with every element due for an update */
+  /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscCalloc1(144 * rom->contact->nelem + 1, &rom->Ke));
   PetscCall(PetscFree4(rom->work, rom->work2, rom->dK, rom->packed));
   PetscCall(PetscMalloc4(12 * n + 1, &rom->work, 12 * n + 1, &rom->work2, n * n + 1, &rom->dK, n * (n + 1) / 2 + 1, &rom->packed));
-  for (PetscInt e = 0; e < rom->contact->nelem; e++) rom->contact->dirty[e] = PETSC_TRUE;
   /* D_e = V_b - V_a of every local contact element, kept for the forces and K_cr */
   {
     BoltContactSet *c = rom->contact;
@@ -226,11 +222,8 @@ PetscErrorCode BoltROMOperatorDestroy(BoltOperator **opp)
   if (!op) PetscFunctionReturn(0);
   {
     BoltROM *rom = (BoltROM *)op->ctx;
-    for (PetscInt p = 0; p < rom->contact->npairs; p++) {
-      rom->contact->epsN[p] = rom->epsSaved[2 * p];
-      rom->contact->epsT[p] = rom->epsSaved[2 * p + 1];
-      rom->contact->bandTraction[p] = rom->epsSaved[2 * BOLTROM_MAX_PAIRS + p];
-    }
+    PetscCall(BoltContactSetRestorePenalties(rom->contact, rom->epsSaved));
+    for (PetscInt p = 0; p < rom->contact->npairs; p++) rom->contact->bandTraction[p] = rom->epsSaved[2 * BOLTROM_MAX_PAIRS + p];
   }
   PetscCall(MatDestroy(&op->M));
   PetscCall(MatDestroy(&op->C));
