@@ -365,6 +365,7 @@ typedef struct {
   PetscReal  bandScale;                     /* -rom_contact_band_scale, or 0 for the default */
   PetscInt   nClosed;                       /* -rom_closed_krylov */
   PetscReal  staticPenaltyScale;            /* -rom_static_penalty_scale */
+  PetscBool  closedKeepActive;              /* -rom_closed_keep_active */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;
 
