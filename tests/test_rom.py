@@ -73,7 +73,7 @@ def test_rom_with_interface_reduction(joint_small, tmp_path):
     # fewer reduced DOFs than contact constraints: the reduced dual loop uses the penalty law
     assert r["contact_law"] == "penalty" and r["failures"] == 0
     assert r["preload_state"] == 1 and r["closed_krylov"] == 3 and r["contact_penalty_scale"] == 500 and r["contact_band_scale"] == 1
-    assert s["errors"]["load_point"]["e_L2"] < 2e-3  # measured 4.4e-4 (README)
+    assert s["errors"]["load_point"]["e_L2"] < 3e-4  # measured 6.0e-5 in session 13 (4.4e-4 before session 12; README)
 
 
 def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
@@ -94,7 +94,7 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
     # run's own preloaded state, so the start is the FOM's to the round-off of the reduced system
     # under its near-hard penalty (measured 3e-10 of the scale; 2e-6 when it was solved again)
     assert abs(rom[0] - fom[0]) <= 1e-7 * scale
-    assert s["errors"]["load_point"]["e_L2"] < 4e-3  # measured 2.2e-3 (2.7e-3 before session 9; paper: 3.5e-3 at its level)
+    assert s["errors"]["load_point"]["e_L2"] < 1.5e-3  # measured 3.3e-4 in session 13 (2.2e-3 in session 9, 2.7e-3 before; paper: 3.5e-3 at its level)
     from_file = {}
     for ranks in (1, 3):
         d = tmp_path / f"np{ranks}"
@@ -296,7 +296,7 @@ def test_rom_where_the_load_opens_the_joint(joint_small, tmp_path):
     assert s["fom"]["failures"] == 0 and s["rom"]["failures"] == 0
     assert s["rom"]["cycles"] > 0  # the anti-cycling rule was needed (README)
     print("1 kN: e_L2", s["errors"]["load_point"]["e_L2"], "cycles", s["rom"]["cycles"])
-    assert s["errors"]["load_point"]["e_L2"] < 0.025  # measured 1.1 % on 1 rank (1.0-1.1 % on 2)
+    assert s["errors"]["load_point"]["e_L2"] < 0.025  # measured 1.5 % on 1 rank, 0.6 % on 2 (session 13; 1.0-1.1 % in session 8)
     proc = run_boltrom(base + ["-fom", "false", "-contact_cycle_close", "false", "-output_dir", tmp_path / "b"], check=False)
     # it either cycles or runs out of outer iterations (it cycled with the FOM's activation band)
     assert proc.returncode != 0 and "the active set did not settle" in proc.stderr
