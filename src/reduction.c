@@ -346,7 +346,8 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     }
     PetscCall(PetscSNPrintf(more, sizeof(more), "; static penalty x %g", (double)o->staticPenaltyScale));
     PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
-    if (o->nClosed > 0 && !o->closedKeepActive) PetscCall(PetscStrlcat(rom->fingerprint, "; closed vectors free to open", sizeof(rom->fingerprint)));
+    /* named when kept, so that files built before session 13 (free) are rebuilt */
+    if (o->nClosed > 0) PetscCall(PetscStrlcat(rom->fingerprint, o->closedKeepActive ? "; closed vectors keep the preloaded set" : "; closed vectors free", sizeof(rom->fingerprint)));
   }
   if (o->file[0]) {
     PetscBool exists, matched;
