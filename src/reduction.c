@@ -340,14 +340,12 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   if (rom->preloadState) {
     char more[64];
     PetscCall(PetscStrlcat(rom->fingerprint, "; preload state", sizeof(rom->fingerprint)));
-    if (o->nClosed > 0) {
-      PetscCall(PetscSNPrintf(more, sizeof(more), "; closed-contact Krylov %" PetscInt_FMT, o->nClosed));
+    if (o->nClosed > 0) { /* the active set named either way, so that files of session 12 and before (free) are rebuilt */
+      PetscCall(PetscSNPrintf(more, sizeof(more), "; closed-contact Krylov %" PetscInt_FMT " (%s)", o->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free"));
       PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
     }
     PetscCall(PetscSNPrintf(more, sizeof(more), "; static penalty x %g", (double)o->staticPenaltyScale));
     PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
-    /* named when kept, so that files built before session 13 (free) are rebuilt */
-    if (o->nClosed > 0) PetscCall(PetscStrlcat(rom->fingerprint, o->closedKeepActive ? "; closed vectors keep the preloaded set" : "; closed vectors free", sizeof(rom->fingerprint)));
   }
   if (o->file[0]) {
     PetscBool exists, matched;

@@ -11,6 +11,8 @@ import pytest
 from conftest import ENV, ROOT, run_summary
 
 ROM = ["-static", "false", "-modal_nev", "0", "-rom"]
+# the paper's IR ROM (CCM + JIM 100 + 100, order 1) on the first 100 steps of paper-step
+PAPER_ROM = ROM + ["-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "1", "-ts_dt", "1e-4", "-ts_end", "0.01"]
 
 
 @pytest.mark.parametrize("ranks", [1, 2])
@@ -81,8 +83,7 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
     multipliers frozen), its order-1 history follows the FOM, and the preloaded state stored in
     the ROM file serves another partition (2 ranks write it, 1 and 3 ranks read it)."""
     mesh, _ = joint_small
-    common = ["-mesh", mesh] + ROM + ["-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "1",
-                                      "-ts_dt", "1e-4", "-ts_end", "0.01"]
+    common = ["-mesh", mesh] + PAPER_ROM
     rom_file = tmp_path / "joint.rom.h5"
     d = tmp_path / "np2"
     s = run_summary(common + ["-fom", "-rom_file", rom_file, "-output_dir", d], d, ranks=2)
@@ -211,8 +212,7 @@ def test_rom_under_a_small_load(joint_small, tmp_path):
     0.12 % in session 13)."""
     from conftest import run_boltrom
     mesh, _ = joint_small
-    args = ["-mesh", mesh] + ROM + ["-fom", "-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "1", "-ts_dt", "1e-4",
-                                    "-ts_end", "0.01", "-load_force", "0.1", "-output_dir", tmp_path / "a", "-summary", tmp_path / "a.json"]
+    args = ["-mesh", mesh] + PAPER_ROM + ["-fom", "-load_force", "0.1", "-output_dir", tmp_path / "a", "-summary", tmp_path / "a.json"]
     proc = run_boltrom(args, ranks=2)
     s = json.loads((tmp_path / "a.json").read_text())
     raised = float(re.search(r"load response \(load x (\S+)\)", proc.stdout).group(1))
@@ -232,8 +232,7 @@ def test_offline_static_solves_under_a_stiff_penalty(joint_small, tmp_path):
     is no further from the FOM (measured e_L2 0.034 % against 0.210 %)."""
     from conftest import run_boltrom
     mesh, _ = joint_small
-    base = ["-mesh", mesh] + ROM + ["-fom", "-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "1", "-ts_dt", "1e-4",
-                                    "-ts_end", "0.01"]
+    base = ["-mesh", mesh] + PAPER_ROM + ["-fom"]
     runs = {}
     for scale in ("1", "1e4", "1e5"):
         d = tmp_path / scale
@@ -260,8 +259,7 @@ def test_closed_contact_vectors_keep_the_preloaded_active_set(joint_small, tmp_p
     against 0.03395 %)."""
     from conftest import run_boltrom
     mesh, _ = joint_small
-    base = ["-mesh", mesh] + ROM + ["-fom", "-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "1", "-ts_dt", "1e-4",
-                                    "-ts_end", "0.01"]
+    base = ["-mesh", mesh] + PAPER_ROM + ["-fom"]
     runs = {}
     for keep in ("true", "false"):
         d = tmp_path / keep
@@ -286,8 +284,7 @@ def test_rom_where_the_load_opens_the_joint(joint_small, tmp_path):
     from conftest import run_boltrom
     mesh, _ = joint_small
     rom_file = tmp_path / "joint.rom.h5"
-    base = ["-mesh", mesh] + ROM + ["-rom_n_ccm", "100", "-rom_n_jim", "100", "-krylov_order", "1", "-ts_dt", "1e-4",
-                                    "-ts_end", "0.01", "-load_force", "1000", "-rom_file", rom_file]
+    base = ["-mesh", mesh] + PAPER_ROM + ["-load_force", "1000", "-rom_file", rom_file]
     proc = run_boltrom(base + ["-fom", "-output_dir", tmp_path / "a", "-summary", tmp_path / "a.json"])
     s = json.loads((tmp_path / "a.json").read_text())
     line = [l for l in proc.stdout.splitlines() if l.startswith("ROM: closed-contact Krylov forcing")][0]
