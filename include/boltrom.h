@@ -366,6 +366,7 @@ typedef struct {
   PetscInt   nClosed;                       /* -rom_closed_krylov */
   PetscReal  staticPenaltyScale;            /* -rom_static_penalty_scale */
   PetscBool  closedKeepActive;              /* -rom_closed_keep_active */
+  PetscBool  staticShapes;                  /* -rom_static_shapes */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;
 

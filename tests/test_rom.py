@@ -39,25 +39,35 @@ def test_exact_sums_over_ranks(ranks):
 @pytest.mark.parametrize("order", [1, 2])
 def test_contact_as_low_rank_input_is_exact_at_s0(joint_small, tmp_path, order):
     """Tied joint, (s0^2 M + s0 C + K + K_c) q = f: the ROM without interface reduction
-    (K_cr = V' K_c V) reproduces it to 1e-8; its basis is orthonormal to 1e-12."""
+    (K_cr = V' K_c V) reproduces it to 1e-8; its basis is orthonormal to 1e-12: the Krylov
+    vectors, then the five static shapes (preloaded state, load response, three closed-contact
+    Krylov vectors)."""
     mesh, _ = joint_small
     s = run_summary(["-mesh", mesh] + ROM + ["-rom_n_ccm", "0", "-rom_n_jim", "0", "-krylov_order", order,
                      "-rom_check_s0", "-rom_check_orthogonality", "-ts_dt", "1e-4", "-ts_end", "2e-4",
                      "-output", "false"], tmp_path)
     assert s["rom"]["check_s0_error"] < 1e-8
     assert s["rom"]["orthogonality"] < 1e-12
-    assert s["rom"]["dim"] == order * s["rom"]["inputs"]
+    assert s["rom"]["dim"] == order * s["rom"]["inputs"] + 5 and s["rom"]["closed_krylov"] == 3
 
 
-def test_rom_matches_fom_without_interface_reduction(joint_small, tmp_path):
+@pytest.mark.parametrize("order,shapes,bound", [("2", "true", 1e-3), ("1", "true", 1e-3), ("1", "false", None)])
+def test_rom_matches_fom_without_interface_reduction(joint_small, tmp_path, order, shapes, bound):
+    """The paper's ROM without interface reduction (its Table 3: 7.8e-4). At order 1 the static
+    shapes (the closed joint's static responses to the load and to the mass times them) carry its
+    inertia; without them order 1 is far off (session 14: 0.76 at the paper level, 2.3e-4 with them)."""
     mesh, _ = joint_small
     # a wide activation band keeps the active set fixed in both models, so that the comparison
     # measures the reduction and not the edge-of-contact decisions (README: both are reported)
-    s = run_summary(["-mesh", mesh, "-fom"] + ROM + ["-rom_n_ccm", "0", "-rom_n_jim", "0", "-krylov_order", "2",
-                     "-contact_activation_gap", "1e-5", "-ts_dt", "1e-4", "-ts_end", "0.01", "-output", "false"], tmp_path)
+    s = run_summary(["-mesh", mesh, "-fom"] + ROM + ["-rom_n_ccm", "0", "-rom_n_jim", "0", "-krylov_order", order,
+                     "-rom_static_shapes", shapes, "-contact_activation_gap", "1e-5", "-ts_dt", "1e-4", "-ts_end", "0.01",
+                     "-output", "false"], tmp_path)
     e = s["errors"]["load_point"]
-    print("ROM (order 2, no interface reduction) against FOM:", e, "dim", s["rom"]["dim"])
-    assert e["e_L2"] < 1e-3
+    print(f"ROM (order {order}, no interface reduction, static shapes {shapes}) against FOM:", e, "dim", s["rom"]["dim"])
+    if bound:
+        assert e["e_L2"] < bound
+    else:  # the failure the shapes mend
+        assert e["e_L2"] > 1e-2
 
 
 def test_rom_with_interface_reduction(joint_small, tmp_path):
@@ -126,16 +136,25 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
     assert abs(start["1e4"] - start["1"]) <= 1e-4 * abs(start["1"]), start
 
 
-def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path):
+@pytest.mark.parametrize("shapes,bound", [("false", 1e-8), ("true", 1e-3)])
+def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path, shapes, bound):
+    """The ROM without interface reduction built on 1 and on 2 ranks: its Krylov basis and the
+    reduced dual loop agree to 1e-8. Its static shapes lie within 1.5e-8 of the Krylov vectors'
+    span (the remainders are printed), so orthogonalising them amplifies the round-off in which
+    the two builds differ (and PT-Scotch's 2-rank partition is not the same from run to run):
+    five pairs of builds differed by 3.7e-7 to 3.5e-5 (session 14), so the bound here only
+    catches a real disagreement. From one ROM file the histories agree to 1e-8
+    (test_rom_file_built_on_2_ranks_serves_1_rank)."""
     mesh, _ = joint_small
     hist = {}
     for ranks in (1, 2):
         d = tmp_path / f"np{ranks}"
         run_summary(["-mesh", mesh] + ROM + ["-rom_n_ccm", "0", "-rom_n_jim", "0", "-ts_dt", "1e-4", "-ts_end", "5e-3",
-                     "-contact_tol_lambda", "1e-9", "-contact_max_inner", "1000", "-output_dir", d], d, ranks=ranks)
+                     "-rom_static_shapes", shapes, "-contact_tol_lambda", "1e-9", "-contact_max_inner", "1000",
+                     "-output_dir", d], d, ranks=ranks)
         with h5py.File(d / "joint.h5") as f:
             hist[ranks] = f["/rom/probe"][...]
-    assert np.abs(hist[1] - hist[2]).max() <= 1e-8 * np.abs(hist[1]).max()
+    assert np.abs(hist[1] - hist[2]).max() <= bound * np.abs(hist[1]).max()
 
 
 def test_rom_file_reuse_and_refusal(joint_small, tmp_path):
