@@ -284,7 +284,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
 /* Appends the static shapes to the basis, orthonormalised against it; dependent ones are
    dropped. The remainders are printed: the ROM without interface reduction has shapes within
    1e-8 of its Krylov vectors' span, whose round-off the orthogonalisation then amplifies (README:
-   its histories built on 1 and 2 ranks differ by about 1e-6). */
+   its histories built on 1 and 2 ranks differ by 4e-7 to 4e-5). */
 static PetscErrorCode BoltBasisAppend(BV V, PetscInt nv, Vec v[], PetscInt *added)
 {
   PetscInt k, j = 0;
