@@ -169,7 +169,7 @@ PetscErrorCode BoltContactSetAugment(BoltContactSet *, PetscReal *, PetscReal *)
 PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *, PetscInt *, PetscBool *);
 PetscErrorCode BoltContactSetCloseCycle(BoltContactSet *, PetscInt *);
 PetscErrorCode BoltContactSetSetActive(BoltContactSet *, const PetscBool[]);
-PetscErrorCode BoltContactSetScalePenalties(BoltContactSet *, PetscReal, PetscReal[]);
+PetscErrorCode BoltContactSetScalePenalties(BoltContactSet *, PetscReal, PetscReal, PetscReal[]);
 PetscErrorCode BoltContactSetRestorePenalties(BoltContactSet *, const PetscReal[]);
 PetscErrorCode BoltContactSetForces(BoltContactSet *);
 PetscErrorCode BoltContactSetStiffness(BoltContactSet *, Mat *);
@@ -348,7 +348,7 @@ typedef struct {
   PetscReal       penaltyScale;  /* the ROM's penalties: this times the FOM's */
   PetscReal       bandScale;     /* the ROM's activation band (traction): this times the FOM's */
   PetscInt        nClosed;       /* closed-contact Krylov vectors in the basis */
-  PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands, while the ROM's are set */
+  PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
 } BoltROM;
 
 typedef struct {

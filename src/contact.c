@@ -640,17 +640,20 @@ PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged,
   PetscFunctionReturn(0);
 }
 
-/* Scales every pair's penalties by s, keeping the current ones in saved[2 * npairs] (normal,
-   tangential) so that RestorePenalties puts back the very same values; every element is due for
-   a stiffness update either way. */
-PetscErrorCode BoltContactSetScalePenalties(BoltContactSet *c, PetscReal s, PetscReal saved[])
+/* Scales every pair's penalties by s and its activation band (the tension at which a closed
+   point opens) by band, keeping the current values in saved[3 * npairs] (normal, tangential,
+   band) so that RestorePenalties puts back the very same ones; every element is due for a
+   stiffness update either way. */
+PetscErrorCode BoltContactSetScalePenalties(BoltContactSet *c, PetscReal s, PetscReal band, PetscReal saved[])
 {
   PetscFunctionBeginUser;
   for (PetscInt p = 0; p < c->npairs; p++) {
-    saved[2 * p]     = c->epsN[p];
-    saved[2 * p + 1] = c->epsT[p];
+    saved[3 * p]     = c->epsN[p];
+    saved[3 * p + 1] = c->epsT[p];
+    saved[3 * p + 2] = c->bandTraction[p];
     c->epsN[p] *= s;
     c->epsT[p] *= s;
+    c->bandTraction[p] *= band;
   }
   for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -660,8 +663,9 @@ PetscErrorCode BoltContactSetRestorePenalties(BoltContactSet *c, const PetscReal
 {
   PetscFunctionBeginUser;
   for (PetscInt p = 0; p < c->npairs; p++) {
-    c->epsN[p] = saved[2 * p];
-    c->epsT[p] = saved[2 * p + 1];
+    c->epsN[p]         = saved[3 * p];
+    c->epsT[p]         = saved[3 * p + 1];
+    c->bandTraction[p] = saved[3 * p + 2];
   }
   for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
   PetscFunctionReturn(0);

@@ -192,7 +192,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
 {
   BoltOperator *op;
   BoltNewmark  *nm;
-  PetscReal     F = loads->preloadForce, epsFOM[2 * BOLTROM_MAX_PAIRS];
+  PetscReal     F = loads->preloadForce, epsFOM[3 * BOLTROM_MAX_PAIRS];
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactSetResetState(c));
@@ -228,7 +228,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
      penalty clusters the multiplier CG's operator B (K + eps B'B)^-1 B' near 1/eps: at level 1.8
      the first closed-contact vector took 1425 iterations at the FOM's penalty. The preload itself
      stays the FOM's. */
-  PetscCall(BoltContactSetScalePenalties(c, staticPenaltyScale, epsFOM));
+  PetscCall(BoltContactSetScalePenalties(c, staticPenaltyScale, 1.0, epsFOM)); /* the band as it is */
   PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (double)nm->staticOuter, (double)nm->staticInner, c->nactive, c->ngpGlobal));
   /* the load on top, from the preloaded state (multipliers warm, active set free to change).
      The contact loop's tolerance is relative to the preload's multipliers, so a load below

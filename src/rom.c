@@ -180,11 +180,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   op->contactStiffness     = ROMContactStiffness;
   op->probe                = ROMProbe;
   /* the ROM's own penalties and activation band, restored when the operator goes */
-  PetscCall(BoltContactSetScalePenalties(rom->contact, rom->penaltyScale, rom->epsSaved));
-  for (PetscInt p = 0; p < rom->contact->npairs; p++) {
-    rom->epsSaved[2 * BOLTROM_MAX_PAIRS + p] = rom->contact->bandTraction[p];
-    rom->contact->bandTraction[p] *= rom->bandScale;
-  }
+  PetscCall(BoltContactSetScalePenalties(rom->contact, rom->penaltyScale, rom->bandScale, rom->epsSaved));
   /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
@@ -223,7 +219,6 @@ PetscErrorCode BoltROMOperatorDestroy(BoltOperator **opp)
   {
     BoltROM *rom = (BoltROM *)op->ctx;
     PetscCall(BoltContactSetRestorePenalties(rom->contact, rom->epsSaved));
-    for (PetscInt p = 0; p < rom->contact->npairs; p++) rom->contact->bandTraction[p] = rom->epsSaved[2 * BOLTROM_MAX_PAIRS + p];
   }
   PetscCall(MatDestroy(&op->M));
   PetscCall(MatDestroy(&op->C));
