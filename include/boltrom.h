@@ -110,77 +110,111 @@ typedef struct {
 
 enum { BOLT_OPEN_NODAL = 0, BOLT_OPEN_GAUSS = 1 };
 
+/* The contact law at one Gauss point (contact_law.c), a registered type: the trial traction of
+   a multiplier and a gap under the pair's penalties. A law is a table of such point functions,
+   so that a strict law or a frictional one adds its own entries beside it. */
+typedef struct {
+  void (*traction)(const PetscReal lambda[3], const PetscReal g[3], const PetscReal n[3], PetscReal epsN, PetscReal epsT, PetscReal t[3]);
+} BoltContactLaw;
+extern PetscFunctionList BoltContactLawList;
+PetscErrorCode BoltContactLawRegister(const char[], PetscErrorCode (*)(BoltContactLaw *));
+PetscErrorCode BoltContactLawRegisterAll(void);
+PetscErrorCode BoltContactLawSetType(MPI_Comm, const char[], BoltContactLaw *);
+
+/* The contact geometry, shared by every model: pairs, matched elements, Gauss-point data, the
+   local contact vector and its scatter, and the defaults of the law each model's state starts
+   from. It holds no state of a solve (BoltContactState does) apart from scratch vectors that a
+   call fills and reads before it returns. */
 typedef struct {
   BoltMesh           *mesh;
   PetscInt            npairs;
   char                pairName[BOLTROM_MAX_PAIRS][BOLTROM_NAME_LEN];
   PetscInt            pairPart[BOLTROM_MAX_PAIRS][2];
   PetscReal           penaltyFactor;              /* x E of the softer part, per metre */
-  PetscReal           epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS];
-  PetscReal           bandTraction[BOLTROM_MAX_PAIRS]; /* tension [Pa] beyond which a closed point opens */
+  PetscReal           epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS]; /* default penalties */
+  PetscReal           bandTraction[BOLTROM_MAX_PAIRS]; /* default tension [Pa] beyond which a closed point opens */
   PetscInt            contactDofsPerPair[BOLTROM_MAX_PAIRS], contactDofs;
   PetscInt            elementsPerPair[BOLTROM_MAX_PAIRS];
   PetscReal           areaPerPair[BOLTROM_MAX_PAIRS];
   PetscReal           matchTolerance;              /* relative to the mesh size */
   PetscInt            nelem;
   BoltContactElement *elem;
-  /* state at the Gauss points (4 per element), set up by BoltContactSetSetUpState */
-  PetscBool           augment;        /* augmented Lagrangian (false: pure penalty, lambda = 0) */
-  PetscBool           augmentOption;  /* -contact_augment as given; each model may choose its own law */
-  PetscBool           warmStart;      /* keep the multipliers across outer iterations and steps */
+  /* defaults of the law (-contact_*), copied into each new state */
+  char                lawType[64];    /* -contact_law: a BoltContactLawList entry */
+  PetscBool           augment;        /* -contact_augment: augmented Lagrangian (false: pure penalty) */
   PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
   PetscInt            openTest;       /* BOLT_OPEN_NODAL: a closed point opens on its traction smoothed
                                          through the nodes; BOLT_OPEN_GAUSS: on its own multiplier */
   PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
-  PetscReal          *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
-  PetscBool          *active, *activeOld, *activeOlder;
-  PetscBool           closeOnly; /* anti-cycling (the dual loop): points may close but not open */
   PetscInt           *elemLocal;      /* 24 per element: index in the local contact vector, -1 if clamped */
   PetscInt            nlocal;         /* length of the local contact vector */
   PetscInt           *localGlobal;    /* its global DOFs */
+  PetscInt            ngpGlobal;
+  Vec                 layout;         /* a global displacement vector: the layout of K_c */
+  VecScatter          scatter;        /* global displacement -> uc */
+  PetscReal          *nodalArea;      /* nlocal: sum w N n over all Gauss points (vector area of the node) */
+  /* scratch */
   Vec                 uc, fc;         /* local contact displacements and forces (sequential) */
   Vec                 fcWork, fGlobal; /* nodal sums across ranks: local and global layout */
-  PetscReal          *nodalArea;      /* nlocal: sum w N n over all Gauss points (vector area of the node) */
   PetscReal          *nodalForce, *tau; /* nlocal, and 3 per Gauss point: work space of the opening test */
-  VecScatter          scatter;        /* global displacement -> uc */
-  PetscReal          *Ke;             /* 576 per element: stiffness of its active Gauss points */
-  PetscBool          *dirty;          /* element whose activity changed since its Ke was built */
-  Mat                 Kc;             /* contact stiffness in the global layout (COO) */
-  PetscBool           KcAssembled;    /* Kc holds the current element matrices */
-  PetscInt            nactive, ngpGlobal;
 } BoltContactSet;
 
+/* The contact state of one model (contact_state.c): its law and penalties, and at every Gauss
+   point the multiplier, the gap and the active flags of the last three outer iterations; the
+   element matrices and K_c of its active set. Each operator owns one. */
+typedef struct {
+  BoltContactSet *set;
+  char            lawType[64];
+  BoltContactLaw  law;
+  PetscBool       augment;        /* augmented Lagrangian (false: penalty, lambda fixed) */
+  PetscReal       activationGap;
+  PetscInt        openTest;
+  PetscReal       epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS], bandTraction[BOLTROM_MAX_PAIRS];
+  PetscReal      *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
+  PetscBool      *active, *activeOld, *activeOlder;
+  PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
+  PetscBool      *dirty;          /* element whose activity or penalty changed since its Ke was built */
+  PetscReal      *Ke;             /* 576 per element: stiffness of its active Gauss points (made when first needed) */
+  Mat             Kc;             /* contact stiffness in the global layout (COO; made when first needed) */
+  PetscBool       KcAssembled;    /* Kc holds the current element matrices */
+  PetscInt        nactive;
+} BoltContactState;
+
+/* contact.c: the geometry */
 PetscErrorCode BoltContactSetCreate(BoltMesh *, BoltContactSet **);
 PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *);
 PetscErrorCode BoltContactSetSetUp(BoltContactSet *);
+PetscErrorCode BoltContactSetSetUpQuadrature(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *);
 PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *, Mat, Mat *);
-PetscErrorCode BoltContactSetSetUpState(BoltContactSet *, Vec);
-PetscErrorCode BoltContactSetResetState(BoltContactSet *);
+PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *, Mat *);
 PetscErrorCode BoltContactSetScatter(BoltContactSet *, Vec);
-PetscErrorCode BoltContactSetGaps(BoltContactSet *);
 PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
 PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[]);
 void           BoltContactElementForces(BoltContactSet *, PetscInt, const PetscReal[], PetscReal[12]);
 PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, const PetscReal[], PetscReal[]);
-PetscErrorCode BoltContactSetDot(BoltContactSet *, const PetscReal[], const PetscReal[], PetscReal *);
-PetscErrorCode BoltContactSetPenetration(BoltContactSet *, PetscReal[], PetscReal *);
-PetscErrorCode BoltContactSetAugment(BoltContactSet *, PetscReal *, PetscReal *);
-PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *, PetscInt *, PetscBool *);
-PetscErrorCode BoltContactSetCloseCycle(BoltContactSet *, PetscInt *);
-PetscErrorCode BoltContactSetSetActive(BoltContactSet *, const PetscBool[]);
-PetscErrorCode BoltContactSetScalePenalties(BoltContactSet *, PetscReal, PetscReal, PetscReal[]);
-PetscErrorCode BoltContactSetRestorePenalties(BoltContactSet *, const PetscReal[]);
-PetscErrorCode BoltContactSetForces(BoltContactSet *);
-PetscErrorCode BoltContactSetStiffness(BoltContactSet *, Mat *);
-PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *, PetscReal[]);
-PetscErrorCode BoltContactSetTractionStats(BoltContactSet *, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode BoltContactSetView(BoltContactSet *, PetscViewer);
 PetscErrorCode BoltContactSetDestroy(BoltContactSet **);
 
-/* contact_law.c: the law at one Gauss point */
-void      BoltContactTrialTraction(const PetscReal[3], const PetscReal[3], const PetscReal[3], PetscReal, PetscReal, PetscReal[3]);
-PetscBool BoltContactIsActive(const PetscReal[3], const PetscReal[3]);
+/* contact_state.c: one model's state */
+PetscErrorCode BoltContactStateCreate(BoltContactSet *, BoltContactState **);
+PetscErrorCode BoltContactStateReset(BoltContactState *);
+PetscErrorCode BoltContactStateSetPenaltyScale(BoltContactState *, PetscReal, PetscReal);
+PetscErrorCode BoltContactStateGaps(BoltContactState *);
+PetscErrorCode BoltContactStateAugment(BoltContactState *, PetscReal *, PetscReal *);
+PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, PetscInt *, PetscBool *);
+PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
+PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[]);
+PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
+PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);
+PetscErrorCode BoltContactStateTractionStats(BoltContactState *, PetscReal *, PetscReal *, PetscReal *);
+PetscErrorCode BoltContactStateDot(BoltContactState *, const PetscReal[], const PetscReal[], PetscReal *);
+PetscErrorCode BoltContactStatePenetration(BoltContactState *, PetscReal[], PetscReal *);
+PetscErrorCode BoltContactStateCountActive(BoltContactState *);
+#define BOLT_CONTACT_PACK 36 /* values per element of BoltContactStatePack */
+void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
+void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
+PetscErrorCode BoltContactStateDestroy(BoltContactState **);
 
 /* ------------------------------------------------------------------ loads.c */
 typedef struct {
@@ -205,72 +239,43 @@ PetscErrorCode BoltLoadSetProbe(BoltLoadSet *, Vec, PetscReal *);
 PetscErrorCode BoltLoadSetView(BoltLoadSet *, PetscViewer);
 PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **);
 
-/* ------------------------------------------------------------------ operator + newmark.c */
-/* What the time integrator needs of a model, full or reduced: its matrices in its own
-   coordinates and the maps to and from the contact DOFs. FOM and ROM both provide one. */
+/* ------------------------------------------------------------------ operator.c */
+/* What the dual loop and the time integrator need of a model, full or reduced: its matrices in
+   its own coordinates, its contact state, and the maps to and from the contact DOFs. FOM and
+   ROM both provide one, through an ops table. */
 typedef struct BoltOperator_s BoltOperator;
-struct BoltOperator_s {
-  const char      *name;     /* "FOM" or "ROM" */
-  MPI_Comm         comm;     /* for messages and errors (the ROM's matrices live on every rank) */
-  MatSolverType    solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
-  PetscBool        exactConstraints; /* every contact gap can be closed (FOM, ROM without interface reduction) */
-  PetscBool        augment;          /* contact law of this model: augmented Lagrangian, or penalty alone */
-  PetscBool        meshLayout;       /* its vectors are laid out as the mesh's DOFs (FOM), else reduced and replicated */
-  char             prefix[16]; /* options prefix of its solver: fom_ or rom_ */
-  Mat              M, C, K;
-  Vec              load, preload; /* external load pattern and preload, in its coordinates */
-  BoltContactSet  *contact;
-  void            *ctx;
-  PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);   /* q -> contact->uc */
+typedef struct {
+  PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);             /* q -> contact->uc */
   PetscErrorCode (*contactForces)(BoltOperator *, const PetscReal[], Vec); /* Gauss-point tractions -> F (overwritten) */
-  PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);     /* K_c of the active set */
+  PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);               /* K_c of the active set */
   PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
+  /* checkpoints: the model's vectors (named datasets) and whatever else its state holds */
+  PetscErrorCode (*vectorsSave)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]);
+  PetscErrorCode (*vectorsLoad)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[], PetscInt *);
+  PetscErrorCode (*stateSave)(BoltOperator *, PetscViewer);
+  PetscErrorCode (*stateLoad)(BoltOperator *, PetscViewer);
+  PetscErrorCode (*view)(BoltOperator *, PetscViewer);
+  PetscErrorCode (*destroy)(BoltOperator *);
+} BoltOperatorOps;
+
+struct BoltOperator_s {
+  const char       *name;     /* "FOM" or "ROM" */
+  MPI_Comm          comm;     /* for messages and errors (the ROM's matrices live on every rank) */
+  MatSolverType     solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
+  PetscBool         exactConstraints; /* every contact gap can be closed (FOM, ROM without interface reduction) */
+  char              prefix[16]; /* options prefix of its solver: fom_ or rom_ */
+  Mat               M, C, K;
+  Vec               load, preload; /* external load pattern and preload, in its coordinates */
+  BoltContactSet   *contact;  /* the shared geometry */
+  BoltContactState *state;    /* this model's own contact state */
+  void             *ctx;
+  BoltOperatorOps   ops;
 };
 
-typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1 } BoltLoadHistory;
-
-typedef struct {
-  BoltOperator   *op;
-  PetscReal       beta, gamma, dt, tEnd;
-  BoltLoadHistory history;
-  PetscReal       frequency;
-  PetscInt        maxOuter, maxInner;
-  PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
-  PetscBool       continueOnFailure, monitor;
-  PetscBool       closeCycles; /* anti-cycling (-contact_cycle_close): once the set cycles or is slow to settle, points only close */
-  PetscInt        contactMonitor; /* -contact_monitor: 1 a line per outer iteration, 2 also per CG iteration */
-  PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
-  PetscBool       keepStaticActiveSet; /* the static solve keeps the given active set (a ROM started from the FOM's state) */
-  PetscBool       calibratePreload;
-  PetscReal       preloadTarget, preloadScale;
-  PetscBool       calibrating; /* in the preload's dual loop: each outer iteration scales to the target clamping force */
-  Mat             Keff;
-  KSP             ksp;
-  PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */
-  PetscBool       dynamic; /* K_eff is built of a1 M + a4 C + K (else K: static) */
-  Vec             q, v, acc, rhs, Fc, work;
-  PetscInt        nsteps, step;
-  PetscReal      *probeTime, *probeValue, *energy;
-  PetscInt        snapshotEvery, nsnap;
-  Vec            *snap;
-  PetscReal      *snapTime;
-  /* counters and phase times (the paper's Table 2) */
-  PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
-  PetscReal       tContactStiffness, tDisplacements, tContactForces, tOnline;
-  PetscReal       staticOuter, staticInner;
-  PetscInt        staticFactorizations, staticSolves;
-  PetscReal       lastChange, lastPenetration; /* of the last augmentation */
-  PetscInt        inner;   /* 0: Uzawa augmentations (the paper), 1: conjugate gradients on the multipliers */
-  Vec             qp;      /* displacement of a search direction (CG) */
-  Vec             FcLambda; /* contact forces of the current multipliers (CG) */
-  PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
-  /* checkpoints (checkpoint.c): <checkpointBase>-fom.ckpt.h5 / -rom.ckpt.h5 */
-  PetscInt        checkpointEvery;  /* write one every this many steps (0: never) */
-  char            checkpointBase[PETSC_MAX_PATH_LEN];
-  PetscBool       restart;          /* continue from the checkpoint instead of step 0 */
-  PetscReal       tOnlineBefore;    /* online time spent before the restart */
-  PetscReal       tCheckpoint;      /* time spent writing checkpoints (not online work) */
-} BoltNewmark;
+PetscErrorCode BoltOperatorCreate(MPI_Comm, const char[], BoltContactSet *, BoltOperator **);
+PetscErrorCode BoltOperatorSetSystem(BoltOperator *, Mat, Mat, Mat, Vec, Vec);
+PetscErrorCode BoltOperatorView(BoltOperator *, PetscViewer);
+PetscErrorCode BoltOperatorDestroy(BoltOperator **);
 
 /* A static preloaded equilibrium, kept so that a later solve of the same scene (the ROM's offline
    phase after the FOM's run) starts from it instead of solving it again. */
@@ -281,6 +286,97 @@ typedef struct {
   PetscReal  outer, inner;   /* iterations its solve took */
 } BoltPreloadState;
 
+PetscErrorCode BoltPreloadStateCreate(BoltOperator *, Vec, PetscReal, PetscReal, BoltPreloadState **);
+PetscErrorCode BoltPreloadStateApply(const BoltPreloadState *, BoltOperator *, Vec);
+PetscErrorCode BoltPreloadStateDestroy(BoltPreloadState **);
+
+/* fom.c: the full-order operator */
+PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscBool, BoltOperator **);
+
+/* ------------------------------------------------------------------ dual.c */
+/* The dual contact loop for one linear system K_eff q = rhs - B' lambda (the paper's Algorithm
+   1): outer iterations on the active set, inner iterations on the multipliers by a registered
+   inner solver (uzawa, cg). The time integrator and the offline static solves both use it. */
+typedef struct BoltDual_s BoltDual;
+typedef PetscErrorCode (*BoltDualInnerFn)(BoltDual *, Vec, Vec, PetscInt *);
+extern PetscFunctionList BoltDualInnerList;
+PetscErrorCode BoltDualInnerRegister(const char[], BoltDualInnerFn);
+
+struct BoltDual_s {
+  BoltOperator   *op;
+  char            innerType[32];  /* -contact_inner */
+  BoltDualInnerFn inner;
+  PetscInt        maxOuter, maxInner;
+  PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
+  PetscBool       warmStart;      /* keep the multipliers across outer iterations and steps */
+  PetscBool       closeCycles;    /* anti-cycling (-contact_cycle_close): once the set cycles or is slow to settle, points only close */
+  PetscBool       continueOnFailure;
+  PetscInt        monitor;        /* -contact_monitor: 1 a line per outer iteration, 2 also per CG iteration */
+  PetscBool       keepActiveSet;  /* a static solve keeps the given active set */
+  /* the effective matrix: K + K_c, or a1 M + a4 C + K + K_c */
+  PetscBool       dynamic;
+  PetscReal       massCoef, dampingCoef;
+  Mat             Keff;
+  KSP             ksp;
+  /* preload calibration: each outer iteration scales to the target clamping force */
+  PetscBool       calibrating;
+  PetscReal       preloadTarget, preloadScale;
+  PetscInt        step;           /* where the loop is, for messages */
+  PetscReal       time;
+  Vec             Fc, work, qp, FcLambda;
+  PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
+  /* counters and phase times (the paper's Table 2) */
+  PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
+  PetscReal       tContactStiffness, tDisplacements, tContactForces;
+  PetscReal       lastChange, lastPenetration; /* of the last inner iteration */
+};
+
+PetscErrorCode BoltDualCreate(BoltOperator *, BoltDual **);
+PetscErrorCode BoltDualSetFromOptions(BoltDual *);
+PetscErrorCode BoltDualSetUp(BoltDual *);
+PetscErrorCode BoltDualSetEffective(BoltDual *, PetscBool, PetscReal, PetscReal);
+PetscErrorCode BoltDualSolve(BoltDual *, Vec, Vec, PetscBool, PetscInt *, PetscInt *);
+PetscErrorCode BoltDualSolveStatic(BoltDual *, Vec, Vec, PetscReal, PetscInt *, PetscInt *);
+PetscErrorCode BoltDualResetCounters(BoltDual *);
+PetscErrorCode BoltDualView(BoltDual *, PetscViewer);
+PetscErrorCode BoltDualReleaseSolver(BoltDual *);
+PetscErrorCode BoltDualDestroy(BoltDual **);
+/* contact_monitor.c: diagnostics of the loop (-contact_monitor) */
+PetscErrorCode BoltContactMonitorOuter(BoltDual *, PetscInt, PetscInt, PetscInt, PetscBool);
+PetscErrorCode BoltContactMonitorTension(BoltDual *);
+PetscErrorCode BoltContactMonitorCG(BoltDual *, Vec, Vec, PetscInt, PetscReal, PetscReal, PetscReal, const PetscReal[], PetscReal, PetscReal[]);
+
+/* ------------------------------------------------------------------ newmark.c */
+typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1 } BoltLoadHistory;
+
+typedef struct {
+  BoltOperator   *op;
+  BoltDual       *dual;
+  PetscReal       beta, gamma, dt, tEnd;
+  BoltLoadHistory history;
+  PetscReal       frequency;
+  PetscBool       monitor;
+  PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
+  PetscBool       calibratePreload;
+  PetscReal       preloadTarget, preloadScale;
+  PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */
+  Vec             q, v, acc, rhs, work;
+  PetscInt        nsteps, step;
+  PetscReal      *probeTime, *probeValue, *energy;
+  PetscInt        snapshotEvery, nsnap;
+  Vec            *snap;
+  PetscReal      *snapTime;
+  PetscReal       tOnline;
+  PetscReal       staticOuter, staticInner;
+  PetscInt        staticFactorizations, staticSolves;
+  /* checkpoints (checkpoint.c): <checkpointBase>-fom.ckpt.h5 / -rom.ckpt.h5 */
+  PetscInt        checkpointEvery;  /* write one every this many steps (0: never) */
+  char            checkpointBase[PETSC_MAX_PATH_LEN];
+  PetscBool       restart;          /* continue from the checkpoint instead of step 0 */
+  PetscReal       tOnlineBefore;    /* online time spent before the restart */
+  PetscReal       tCheckpoint;      /* time spent writing checkpoints (not online work) */
+} BoltNewmark;
+
 PetscErrorCode BoltNewmarkCreate(BoltOperator *, BoltNewmark **);
 PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *);
 PetscErrorCode BoltNewmarkSetUp(BoltNewmark *);
@@ -288,16 +384,9 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *);
 PetscErrorCode BoltNewmarkRun(BoltNewmark *);
 PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
 PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *);
-PetscErrorCode BoltNewmarkPreloadStateGet(BoltNewmark *, BoltPreloadState **);
-PetscErrorCode BoltNewmarkPreloadStateSet(BoltNewmark *, const BoltPreloadState *);
-PetscErrorCode BoltPreloadStateDestroy(BoltPreloadState **);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
-
-/* fom.c: the full-order operator */
-PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscBool, BoltOperator **);
-PetscErrorCode BoltFOMDestroy(BoltOperator **);
 
 /* ------------------------------------------------------------------ exact_sum.c */
 /* n sums over ranks that give the same bits on any partition (two fixed grids per term) */
@@ -373,7 +462,6 @@ typedef struct {
 PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);
 PetscErrorCode BoltROMBuild(BoltReductionOptions *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltROM **);
 PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
-PetscErrorCode BoltROMOperatorDestroy(BoltOperator **);
 PetscErrorCode BoltROMDestroy(BoltROM **);
 PetscErrorCode BoltROMFingerprint(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscInt, PetscReal, PetscReal, PetscInt, PetscInt, char[], size_t);
 PetscErrorCode BoltROMSave(BoltROM *, BV, BoltAssembler *, BoltLoadSet *, const char[], const char[]);
@@ -425,6 +513,7 @@ PetscErrorCode BoltJSONClose(BoltJSON *);
 PetscErrorCode BoltMakeDir(MPI_Comm, const char[]);
 PetscErrorCode BoltMakeParentDir(MPI_Comm, const char[]);
 PetscErrorCode BoltHDF5WriteValues(PetscViewer, MPI_Comm, const char[], PetscInt, PetscInt, const PetscScalar[], PetscBool);
+PetscErrorCode BoltHDF5WriteVecs(PetscViewer, MPI_Comm, PetscInt, const char *const[], Vec[], PetscBool);
 PetscErrorCode BoltReadAll(PetscViewer, MPI_Comm, const char[], PetscInt *, PetscReal **);
 /* Sorted keys of a keyed dataset and the permutation to their rows. */
 typedef struct {

@@ -14,7 +14,7 @@
 #include <ctype.h>
 
 #define BOLT_CKPT_NGLOBALS 14
-#define BOLT_CKPT_CONTACT  36
+#define BOLT_CKPT_CONTACT  BOLT_CONTACT_PACK
 
 static PetscErrorCode BoltCheckpointFingerprint(BoltNewmark *nm, char fp[], size_t len)
 {
@@ -23,7 +23,7 @@ static PetscErrorCode BoltCheckpointFingerprint(BoltNewmark *nm, char fp[], size
 
   PetscFunctionBeginUser;
   PetscCall(VecGetSize(nm->q, &n));
-  PetscCall(PetscSNPrintf(fp, len, "boltrom checkpoint 1; model %s; mesh %s; unknowns %" PetscInt_FMT "; contact points %" PetscInt_FMT "; dt %.17g; beta %.17g; gamma %.17g; load history %d, %.17g Hz; contact law %s", op->name, op->contact->mesh->filename, n, op->contact->ngpGlobal, (double)nm->dt, (double)nm->beta, (double)nm->gamma, (int)nm->history, (double)nm->frequency, op->augment ? "augmented" : "penalty"));
+  PetscCall(PetscSNPrintf(fp, len, "boltrom checkpoint 1; model %s; mesh %s; unknowns %" PetscInt_FMT "; contact points %" PetscInt_FMT "; dt %.17g; beta %.17g; gamma %.17g; load history %d, %.17g Hz; contact law %s", op->name, op->contact->mesh->filename, n, op->contact->ngpGlobal, (double)nm->dt, (double)nm->beta, (double)nm->gamma, (int)nm->history, (double)nm->frequency, op->state->augment ? "augmented" : "penalty"));
   PetscFunctionReturn(0);
 }
 
@@ -46,6 +46,36 @@ static PetscErrorCode BoltCheckpointFileName(BoltNewmark *nm, char file[], size_
   PetscFunctionReturn(0);
 }
 
+/* The vectors a checkpoint holds, with their dataset names: q, v, a and the snapshots so far.
+   Free with BoltCheckpointVectorsFree. */
+static PetscErrorCode BoltCheckpointVectors(BoltNewmark *nm, char ***names, Vec **fields)
+{
+  const char *base[3] = {"q", "v", "a"};
+  PetscInt    n       = 3 + nm->nsnap;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(n, names, n, fields));
+  (*fields)[0] = nm->q;
+  (*fields)[1] = nm->v;
+  (*fields)[2] = nm->acc;
+  for (PetscInt f = 0; f < n; f++) {
+    char name[32];
+    if (f < 3) PetscCall(PetscStrncpy(name, base[f], sizeof(name)));
+    else PetscCall(PetscSNPrintf(name, sizeof(name), "snapshot_%" PetscInt_FMT, f - 3));
+    PetscCall(PetscStrallocpy(name, &(*names)[f]));
+    if (f >= 3) (*fields)[f] = nm->snap[f - 3];
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BoltCheckpointVectorsFree(PetscInt n, char ***names, Vec **fields)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt f = 0; f < n; f++) PetscCall(PetscFree((*names)[f]));
+  PetscCall(PetscFree2(*names, *fields));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
 {
   BoltOperator   *op   = nm->op;
@@ -55,65 +85,31 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   PetscInt        nhist = BOLT_CKPT_NGLOBALS + 3 * (nm->step + 1) + nm->nsnap, k = 0, ne = c->nelem;
   PetscScalar    *buf;
   PetscViewer     v;
-  PetscBool       dist;
-  char            file[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN + 8], fp[PETSC_MAX_PATH_LEN + 512];
+  char            file[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN + 8], fp[PETSC_MAX_PATH_LEN + 512], **names;
+  Vec            *fields;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(BoltCheckpointFileName(nm, file, sizeof(file)));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp", file));
   PetscCall(BoltCheckpointFingerprint(nm, fp, sizeof(fp)));
-  dist = op->meshLayout;
   PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/checkpoint"));
-  {
-    Vec fields[3] = {nm->q, nm->v, nm->acc};
-    if (dist) {
-      Vec keys;
-      PetscCall(BoltMeshDofKeys(c->mesh, nm->q, &keys));
-      PetscCall(PetscObjectSetName((PetscObject)keys, "dof_keys"));
-      PetscCall(VecView(keys, v));
-      PetscCall(VecDestroy(&keys));
-    }
-    for (PetscInt f = 0; f < 3 + nm->nsnap; f++) {
-      const char        *names[3] = {"q", "v", "a"};
-      char               name[32];
-      Vec                x = f < 3 ? fields[f] : nm->snap[f - 3];
-      const PetscScalar *a;
-      PetscInt           n;
-      if (f < 3) PetscCall(PetscStrncpy(name, names[f], sizeof(name)));
-      else PetscCall(PetscSNPrintf(name, sizeof(name), "snapshot_%" PetscInt_FMT, f - 3));
-      PetscCall(VecGetLocalSize(x, &n));
-      PetscCall(VecGetArrayRead(x, &a));
-      PetscCall(BoltHDF5WriteValues(v, comm, name, n, 1, a, dist ? PETSC_FALSE : PETSC_TRUE));
-      PetscCall(VecRestoreArrayRead(x, &a));
-    }
-  }
-  if (!dist) {
-    /* the reduced contact stiffness is a sum updated element by element: its round-off depends
-       on the path, so it is kept as it is rather than rebuilt */
-    Mat                Kc;
-    const PetscScalar *a;
-    PetscInt           nr;
-    PetscCall(op->contactStiffness(op, &Kc));
-    PetscCall(MatGetSize(Kc, &nr, NULL));
-    PetscCall(MatDenseGetArrayRead(Kc, &a));
-    PetscCall(BoltHDF5WriteValues(v, comm, "reduced_contact_stiffness", nr * nr, 1, a, PETSC_TRUE));
-    PetscCall(MatDenseRestoreArrayRead(Kc, &a));
-  }
+  PetscCall(BoltCheckpointVectors(nm, &names, &fields));
+  PetscCall((*op->ops.vectorsSave)(op, v, 3 + nm->nsnap, (const char *const *)names, fields));
+  PetscCall(BoltCheckpointVectorsFree(3 + nm->nsnap, &names, &fields));
+  if (op->ops.stateSave) PetscCall((*op->ops.stateSave)(op, v));
   PetscCall(PetscMalloc1(BOLT_CKPT_CONTACT * ne + nhist + 1, &buf));
   for (PetscInt e = 0; e < ne; e++) buf[e] = c->elem[e].key;
   PetscCall(BoltHDF5WriteValues(v, comm, "contact_keys", ne, 1, buf, PETSC_FALSE));
   for (PetscInt e = 0; e < ne; e++) {
-    for (PetscInt i = 0; i < 12; i++) buf[k++] = c->lambda[12 * e + i];
-    for (PetscInt i = 0; i < 12; i++) buf[k++] = c->gap[12 * e + i];
-    for (PetscInt i = 0; i < 4; i++) buf[k++] = c->active[4 * e + i];
-    for (PetscInt i = 0; i < 4; i++) buf[k++] = c->activeOld[4 * e + i];
-    for (PetscInt i = 0; i < 4; i++) buf[k++] = c->activeOlder[4 * e + i];
+    BoltContactStatePack(op->state, e, &buf[k]);
+    k += BOLT_CONTACT_PACK;
   }
   PetscCall(BoltHDF5WriteValues(v, comm, "contact_state", BOLT_CKPT_CONTACT * ne, 1, buf, PETSC_FALSE));
   {
-    PetscReal g[BOLT_CKPT_NGLOBALS] = {(PetscReal)nm->step, (PetscReal)nm->nsnap, (PetscReal)nm->factorizations, (PetscReal)nm->solves, (PetscReal)nm->outerTotal, (PetscReal)nm->innerTotal, (PetscReal)nm->outerMax, (PetscReal)nm->innerMax, (PetscReal)nm->cycles, (PetscReal)nm->failures, nm->tContactStiffness, nm->tDisplacements, nm->tContactForces, nm->tOnline};
+    BoltDual *d                     = nm->dual;
+    PetscReal g[BOLT_CKPT_NGLOBALS] = {(PetscReal)nm->step, (PetscReal)nm->nsnap, (PetscReal)d->factorizations, (PetscReal)d->solves, (PetscReal)d->outerTotal, (PetscReal)d->innerTotal, (PetscReal)d->outerMax, (PetscReal)d->innerMax, (PetscReal)d->cycles, (PetscReal)d->failures, d->tContactStiffness, d->tDisplacements, d->tContactForces, nm->tOnline};
     k = 0;
     for (PetscInt i = 0; i < BOLT_CKPT_NGLOBALS; i++) buf[k++] = g[i];
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->probeTime[i];
@@ -143,7 +139,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   PetscInt        step, nsnap, k = 0, n, missing = 0;
   PetscReal      *h, *x;
   PetscViewer     v;
-  PetscBool       exists, dist;
+  PetscBool       exists;
   char            file[PETSC_MAX_PATH_LEN], fp[PETSC_MAX_PATH_LEN + 512], *fpFile = NULL;
 
   PetscFunctionBeginUser;
@@ -153,14 +149,13 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
     /* a model killed before its first checkpoint starts over, but with no checkpoint of
        either model the base name is probably wrong */
     char other[PETSC_MAX_PATH_LEN];
-    PetscCall(BoltCheckpointPath(nm->checkpointBase, nm->op->meshLayout ? "ROM" : "FOM", other, sizeof(other)));
+    PetscCall(BoltCheckpointPath(nm->checkpointBase, strcmp(op->name, "FOM") ? "FOM" : "ROM", other, sizeof(other)));
     PetscCall(PetscTestFile(other, 'r', &exists));
     PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart: there is no checkpoint %s; write one first with -checkpoint_every N (and the same -checkpoint_file)", file);
     PetscCall(PetscPrintf(comm, "%s: no checkpoint %s: starting at step 0\n", op->name, file));
     PetscFunctionReturn(0);
   }
   PetscCall(BoltCheckpointFingerprint(nm, fp, sizeof(fp)));
-  dist = op->meshLayout;
   PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/checkpoint/history", "fingerprint", PETSC_STRING, NULL, &fpFile));
   {
@@ -187,45 +182,12 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
 
   /* the model's vectors */
   {
-    Vec          fields[3] = {nm->q, nm->v, nm->acc}, keys = NULL;
-    BoltKeyIndex ix        = {0, NULL, NULL};
-    PetscInt     nloc;
-    if (dist) {
-      PetscReal *kall;
-      PetscCall(BoltReadAll(v, comm, "dof_keys", &n, &kall));
-      PetscCall(BoltKeyIndexCreate(n, kall, &ix));
-      PetscCall(PetscFree(kall));
-      PetscCall(BoltMeshDofKeys(c->mesh, nm->q, &keys));
-    }
-    PetscCall(VecGetLocalSize(nm->q, &nloc));
-    for (PetscInt f = 0; f < 3 + nsnap; f++) {
-      const char  *names[3] = {"q", "v", "a"};
-      char         name[32];
-      Vec          y = f < 3 ? fields[f] : nm->snap[f - 3];
-      PetscScalar *a;
-      if (f < 3) PetscCall(PetscStrncpy(name, names[f], sizeof(name)));
-      else PetscCall(PetscSNPrintf(name, sizeof(name), "snapshot_%" PetscInt_FMT, f - 3));
-      PetscCall(BoltReadAll(v, comm, name, &n, &x));
-      PetscCall(VecGetArray(y, &a));
-      if (dist) {
-        const PetscScalar *kmine;
-        PetscCall(VecGetArrayRead(keys, &kmine));
-        for (PetscInt i = 0; i < nloc; i++) {
-          PetscInt row;
-          PetscCall(BoltKeyIndexFind(&ix, (PetscInt)PetscRealPart(kmine[i]), &row));
-          if (row < 0) missing++;
-          else a[i] = x[row];
-        }
-        PetscCall(VecRestoreArrayRead(keys, &kmine));
-      } else {
-        PetscCheck(n == nloc, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s holds %" PetscInt_FMT " reduced coordinates, this ROM has %" PetscInt_FMT, file, n, nloc);
-        for (PetscInt i = 0; i < nloc; i++) a[i] = x[i];
-      }
-      PetscCall(VecRestoreArray(y, &a));
-      PetscCall(PetscFree(x));
-    }
-    PetscCall(VecDestroy(&keys));
-    PetscCall(BoltKeyIndexDestroy(&ix));
+    char **names;
+    Vec   *fields;
+    nm->nsnap = nsnap;
+    PetscCall(BoltCheckpointVectors(nm, &names, &fields));
+    PetscCall((*op->ops.vectorsLoad)(op, v, 3 + nsnap, (const char *const *)names, fields, &missing));
+    PetscCall(BoltCheckpointVectorsFree(3 + nsnap, &names, &fields));
   }
   /* the contact state of this rank's elements */
   {
@@ -245,11 +207,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
         continue;
       }
       s = &x[BOLT_CKPT_CONTACT * row];
-      for (PetscInt i = 0; i < 12; i++) c->lambda[12 * e + i] = s[i];
-      for (PetscInt i = 0; i < 12; i++) c->gap[12 * e + i] = s[12 + i];
-      for (PetscInt i = 0; i < 4; i++) c->active[4 * e + i] = s[24 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
-      for (PetscInt i = 0; i < 4; i++) c->activeOld[4 * e + i] = s[28 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
-      for (PetscInt i = 0; i < 4; i++) c->activeOlder[4 * e + i] = s[32 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
+      BoltContactStateUnpack(op->state, e, s);
     }
     PetscCall(PetscFree(x));
     PetscCall(BoltKeyIndexDestroy(&ix));
@@ -257,46 +215,26 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &missing, 1, MPIU_INT, MPI_SUM, comm));
   PetscCheck(!missing, comm, PETSC_ERR_USER_INPUT, "-restart: %" PetscInt_FMT " DOFs or contact elements of this model are not in the checkpoint %s: it was written for another mesh or clamp", missing, file);
   /* K_c for the restored active set: the FOM's is assembled from the element matrices at the
-     first step; the ROM's is brought up to date, then replaced by the saved sum */
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
-  c->KcAssembled = PETSC_FALSE;
-  if (!dist) {
-    Mat          Kc;
-    PetscScalar *a;
-    PetscInt     nr;
-    PetscCall(op->contactStiffness(op, &Kc));
-    PetscCall(MatGetSize(Kc, &nr, NULL));
-    PetscCall(BoltReadAll(v, comm, "reduced_contact_stiffness", &n, &x));
-    PetscCheck(n == nr * nr, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (reduced contact stiffness of %" PetscInt_FMT " values)", file, n);
-    PetscCall(MatDenseGetArray(Kc, &a));
-    for (PetscInt i = 0; i < n; i++) a[i] = x[i];
-    PetscCall(MatDenseRestoreArray(Kc, &a));
-    PetscCall(MatAssemblyBegin(Kc, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(Kc, MAT_FINAL_ASSEMBLY));
-    PetscCall(PetscFree(x));
-  }
+     first step; the ROM's is kept as it was (stateLoad) */
+  if (op->ops.stateLoad) PetscCall((*op->ops.stateLoad)(op, v));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
-  {
-    PetscInt nact = 0;
-    for (PetscInt i = 0; i < 4 * c->nelem; i++) nact += c->active[i] ? 1 : 0;
-    PetscCall(MPIU_Allreduce(&nact, &c->nactive, 1, MPIU_INT, MPI_SUM, comm));
-  }
+  PetscCall(BoltContactStateCountActive(op->state));
 
   k                     = 0;
   nm->step              = (PetscInt)h[k++];
   nm->nsnap             = (PetscInt)h[k++];
-  nm->factorizations    = (PetscInt)h[k++];
-  nm->solves            = (PetscInt)h[k++];
-  nm->outerTotal        = (PetscInt)h[k++];
-  nm->innerTotal        = (PetscInt)h[k++];
-  nm->outerMax          = (PetscInt)h[k++];
-  nm->innerMax          = (PetscInt)h[k++];
-  nm->cycles            = (PetscInt)h[k++];
-  nm->failures          = (PetscInt)h[k++];
-  nm->tContactStiffness = h[k++];
-  nm->tDisplacements    = h[k++];
-  nm->tContactForces    = h[k++];
+  nm->dual->factorizations    = (PetscInt)h[k++];
+  nm->dual->solves            = (PetscInt)h[k++];
+  nm->dual->outerTotal        = (PetscInt)h[k++];
+  nm->dual->innerTotal        = (PetscInt)h[k++];
+  nm->dual->outerMax          = (PetscInt)h[k++];
+  nm->dual->innerMax          = (PetscInt)h[k++];
+  nm->dual->cycles            = (PetscInt)h[k++];
+  nm->dual->failures          = (PetscInt)h[k++];
+  nm->dual->tContactStiffness = h[k++];
+  nm->dual->tDisplacements    = h[k++];
+  nm->dual->tContactForces    = h[k++];
   nm->tOnlineBefore     = h[k++];
   for (PetscInt i = 0; i <= step; i++) nm->probeTime[i] = h[k++];
   for (PetscInt i = 0; i <= step; i++) nm->probeValue[i] = h[k++];

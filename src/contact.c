@@ -13,8 +13,8 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   c->mesh           = mesh;
   c->penaltyFactor  = 200.0;
   c->augment        = PETSC_TRUE;
+  PetscCall(PetscStrncpy(c->lawType, "stick", sizeof(c->lawType)));
   c->activationGap  = 1e-7; /* 1 % of the penalty-only penetration under the preload tractions */
-  c->warmStart      = PETSC_TRUE;
   c->matchTolerance = 1e-6;
   *cs               = c;
   PetscFunctionReturn(0);
@@ -23,11 +23,11 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
 PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
 {
   PetscFunctionBeginUser;
+  PetscCall(BoltContactLawRegisterAll());
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
+  PetscCall(PetscOptionsFList("-contact_law", "Contact law at a point (stick: augmented Lagrangian, stick with elastic slip)", NULL, BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m]", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
-  c->augmentOption = c->augment;
-  PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, c->warmStart, &c->warmStart, NULL));
   {
     const char *open[] = {"nodal", "gauss"};
     PetscCall(PetscOptionsEList("-contact_open_test", "When a closed point opens: nodal (its normal traction smoothed through the nodes, nodal force / nodal area, is tensile beyond the band) or gauss (its own multiplier is)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
@@ -317,19 +317,21 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
   PetscFunctionReturn(0);
 }
 
-/* K + Kc with every contact element active (the tied joint), from the contact state's K_c. */
+/* K + Kc with every contact element active (the tied joint), from a state of its own. */
 PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
 {
-  Mat Kc;
+  BoltContactState *s;
+  Mat               Kc;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(boltLog.contactAssembly, 0, 0, 0, 0));
-  PetscCall(BoltContactSetResetState(c)); /* every point active */
-  PetscCall(BoltContactSetStiffness(c, &Kc));
+  PetscCall(BoltContactStateCreate(c, &s)); /* every point active */
+  PetscCall(BoltContactStateStiffness(s, &Kc));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Ktied));
   PetscCall(MatAXPY(*Ktied, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatSetOption(*Ktied, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(PetscObjectSetName((PetscObject)*Ktied, "K_tied"));
+  PetscCall(BoltContactStateDestroy(&s));
   PetscCall(PetscLogEventEnd(boltLog.contactAssembly, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -351,11 +353,7 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
   if (!*cs) PetscFunctionReturn(0);
   PetscCall(PetscFree((*cs)->elem));
   PetscCall(PetscFree3((*cs)->gpN, (*cs)->gpW, (*cs)->gpNormal));
-  PetscCall(PetscFree2((*cs)->lambda, (*cs)->gap));
-  PetscCall(PetscFree3((*cs)->active, (*cs)->activeOld, (*cs)->activeOlder));
   PetscCall(PetscFree((*cs)->elemLocal));
-  PetscCall(PetscFree((*cs)->Ke));
-  PetscCall(PetscFree((*cs)->dirty));
   PetscCall(PetscFree((*cs)->localGlobal));
   PetscCall(VecDestroy(&(*cs)->uc));
   PetscCall(VecDestroy(&(*cs)->fc));
@@ -363,12 +361,12 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
   PetscCall(VecDestroy(&(*cs)->fGlobal));
   PetscCall(PetscFree3((*cs)->nodalArea, (*cs)->nodalForce, (*cs)->tau));
   PetscCall(VecScatterDestroy(&(*cs)->scatter));
-  PetscCall(MatDestroy(&(*cs)->Kc));
+  PetscCall(VecDestroy(&(*cs)->layout));
   PetscCall(PetscFree(*cs));
   PetscFunctionReturn(0);
 }
 
-/* ------------------------------------------------------------------ contact state */
+/* ------------------------------------------------------------------ fields on the contact DOFs */
 
 static PetscErrorCode BoltContactForcesInto(BoltContactSet *, const PetscReal[], Vec);
 
@@ -425,25 +423,17 @@ PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *c, const Pet
   PetscFunctionReturn(0);
 }
 
-/* Gauss-point data, the local contact vector and its scatter, and the K_c pattern. Every
-   Gauss point starts active with zero multipliers (the paper's initial state). */
-PetscErrorCode BoltContactSetSetUpState(BoltContactSet *c, Vec layout)
+/* Gauss-point data, the local contact vector and its scatter. layout: a global displacement
+   vector. */
+PetscErrorCode BoltContactSetSetUpQuadrature(BoltContactSet *c, Vec layout)
 {
-  PetscInt   ne = c->nelem, n = 0, *glob, *perm;
-  IS         isGlobal;
-  PetscInt  *ci, *cj, ncoo = 576 * ne, m_, M_;
+  PetscInt ne = c->nelem, n = 0, *glob, *perm;
+  IS       isGlobal;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc3(16 * ne + 1, &c->gpN, 4 * ne + 1, &c->gpW, 12 * ne + 1, &c->gpNormal));
-  PetscCall(PetscCalloc2(12 * ne + 1, &c->lambda, 12 * ne + 1, &c->gap));
-  PetscCall(PetscMalloc3(4 * ne + 1, &c->active, 4 * ne + 1, &c->activeOld, 4 * ne + 1, &c->activeOlder));
   PetscCall(PetscMalloc1(24 * ne + 1, &c->elemLocal));
-  PetscCall(PetscMalloc1(576 * ne + 1, &c->Ke));
-  PetscCall(PetscMalloc1(ne + 1, &c->dirty));
-  for (PetscInt e = 0; e < ne; e++) {
-    PetscCall(QuadGaussPoints(c->elem[e].Xa, &c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e]));
-    c->dirty[e] = PETSC_TRUE;
-  }
+  for (PetscInt e = 0; e < ne; e++) PetscCall(QuadGaussPoints(c->elem[e].Xa, &c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e]));
   /* local contact vector: the distinct global DOFs the local elements touch */
   PetscCall(PetscMalloc2(24 * ne + 1, &glob, 24 * ne + 1, &perm));
   for (PetscInt e = 0; e < ne; e++)
@@ -467,15 +457,29 @@ PetscErrorCode BoltContactSetSetUpState(BoltContactSet *c, Vec layout)
   PetscCall(ISDestroy(&isGlobal));
   PetscCall(VecDuplicate(c->uc, &c->fcWork));
   PetscCall(VecDuplicate(layout, &c->fGlobal));
+  PetscCall(VecDuplicate(layout, &c->layout));
   PetscCall(PetscMalloc3(n + 1, &c->nodalArea, n + 1, &c->nodalForce, 12 * ne + 1, &c->tau));
   PetscCall(BoltContactSetNodalSum(c, c->gpNormal, c->nodalArea));
-  /* K_c: one COO entry per element matrix entry, fixed pattern of all elements */
-  PetscCall(VecGetLocalSize(layout, &m_));
-  PetscCall(VecGetSize(layout, &M_));
-  PetscCall(MatCreate(c->mesh->comm, &c->Kc));
-  PetscCall(MatSetSizes(c->Kc, m_, m_, M_, M_));
-  PetscCall(MatSetType(c->Kc, MATAIJ));
-  PetscCall(PetscObjectSetName((PetscObject)c->Kc, "Kc"));
+  {
+    PetscInt ngp = 4 * ne;
+    PetscCall(MPIU_Allreduce(&ngp, &c->ngpGlobal, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* An empty K_c in the global layout with the fixed pattern of all contact elements: one COO
+   entry per element matrix entry, so a state's element matrices are inserted as they are. */
+PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *c, Mat *Kc)
+{
+  PetscInt ne = c->nelem, *ci, *cj, ncoo = 576 * ne, m, M;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(c->layout, &m));
+  PetscCall(VecGetSize(c->layout, &M));
+  PetscCall(MatCreate(c->mesh->comm, Kc));
+  PetscCall(MatSetSizes(*Kc, m, m, M, M));
+  PetscCall(MatSetType(*Kc, MATAIJ));
+  PetscCall(PetscObjectSetName((PetscObject)*Kc, "Kc"));
   PetscCall(PetscMalloc2(ncoo + 1, &ci, ncoo + 1, &cj));
   for (PetscInt e = 0; e < ne; e++)
     for (PetscInt i = 0; i < 24; i++)
@@ -483,25 +487,8 @@ PetscErrorCode BoltContactSetSetUpState(BoltContactSet *c, Vec layout)
         ci[576 * e + 24 * i + j] = c->elem[e].dofs[i];
         cj[576 * e + 24 * i + j] = c->elem[e].dofs[j];
       }
-  PetscCall(MatSetPreallocationCOO(c->Kc, ncoo, ci, cj));
+  PetscCall(MatSetPreallocationCOO(*Kc, ncoo, ci, cj));
   PetscCall(PetscFree2(ci, cj));
-  {
-    PetscInt ngp = 4 * ne;
-    PetscCall(MPIU_Allreduce(&ngp, &c->ngpGlobal, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
-  }
-  PetscCall(BoltContactSetResetState(c));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode BoltContactSetResetState(BoltContactSet *c)
-{
-  PetscFunctionBeginUser;
-  for (PetscInt g = 0; g < 4 * c->nelem; g++) c->active[g] = c->activeOld[g] = c->activeOlder[g] = PETSC_TRUE;
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
-  c->KcAssembled = PETSC_FALSE;
-  PetscCall(PetscArrayzero(c->lambda, 12 * c->nelem));
-  PetscCall(PetscArrayzero(c->gap, 12 * c->nelem));
-  c->nactive = c->ngpGlobal;
   PetscFunctionReturn(0);
 }
 
@@ -511,14 +498,6 @@ PetscErrorCode BoltContactSetScatter(BoltContactSet *c, Vec u)
   PetscFunctionBeginUser;
   PetscCall(VecScatterBegin(c->scatter, u, c->uc, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(c->scatter, u, c->uc, INSERT_VALUES, SCATTER_FORWARD));
-  PetscFunctionReturn(0);
-}
-
-/* Gap vectors g = u_b - u_a at every Gauss point, from uc. */
-PetscErrorCode BoltContactSetGaps(BoltContactSet *c)
-{
-  PetscFunctionBeginUser;
-  PetscCall(BoltContactSetGapsOf(c, c->gap));
   PetscFunctionReturn(0);
 }
 
@@ -544,178 +523,6 @@ PetscErrorCode BoltContactSetGapsOf(BoltContactSet *c, PetscReal gap[])
     }
   }
   PetscCall(VecRestoreArrayRead(c->uc, &u));
-  PetscFunctionReturn(0);
-}
-
-/* One augmentation: lambda <- trial traction at active points, 0 elsewhere. Returns the
-   relative change of the multipliers and the largest penetration (-g.n) of an active point. */
-PetscErrorCode BoltContactSetAugment(BoltContactSet *c, PetscReal *relChange, PetscReal *maxPenetration)
-{
-  PetscReal loc[3] = {0, 0, 0}, glob[3];
-
-  PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscInt pair = c->elem[e].pair;
-    for (PetscInt q = 0; q < 4; q++) {
-      PetscInt         gp = 4 * e + q;
-      PetscReal       *lam = &c->lambda[3 * gp], t[3] = {0, 0, 0};
-      const PetscReal *g = &c->gap[3 * gp], *n = &c->gpNormal[3 * gp];
-      if (c->active[gp] && c->augment) BoltContactTrialTraction(lam, g, n, c->epsN[pair], c->epsT[pair], t);
-      for (PetscInt k = 0; k < 3; k++) {
-        loc[0] += PetscSqr(t[k] - lam[k]);
-        loc[1] += PetscSqr(t[k]);
-        lam[k] = t[k];
-      }
-      if (c->active[gp]) loc[2] = PetscMax(loc[2], -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]));
-    }
-  }
-  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPI_SUM, c->mesh->comm));
-  PetscCall(MPIU_Allreduce(&loc[2], &glob[2], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
-  *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
-  *maxPenetration = glob[2];
-  PetscFunctionReturn(0);
-}
-
-/* New active set from the trial tractions; counts the points that changed (global) and tells
-   whether the set equals the one two outer iterations back (cycling between two sets). */
-PetscErrorCode BoltContactSetUpdateActive(BoltContactSet *c, PetscInt *nchanged, PetscBool *cycling)
-{
-  PetscInt   loc[3] = {0, 0, 0}, glob[3];
-  PetscReal *tnOpen = NULL; /* the normal traction that decides whether a closed point opens */
-
-  PetscFunctionBeginUser;
-  /* the traction of a closed point: the multipliers (converged) with augmentation, the trial
-     traction for the penalty alone; an open point has none */
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscInt pair = c->elem[e].pair;
-    for (PetscInt q = 0; q < 4; q++) {
-      PetscInt   gp = 4 * e + q;
-      PetscReal *t  = &c->tau[3 * gp];
-      if (!c->active[gp]) t[0] = t[1] = t[2] = 0;
-      else if (c->augment) PetscCall(PetscArraycpy(t, &c->lambda[3 * gp], 3));
-      else BoltContactTrialTraction(&c->lambda[3 * gp], &c->gap[3 * gp], &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], t);
-    }
-  }
-  PetscCall(PetscMalloc1(4 * c->nelem + 1, &tnOpen));
-  if (c->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tnOpen));
-  else
-    for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-      const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
-      tnOpen[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
-    }
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscInt pair = c->elem[e].pair;
-    for (PetscInt q = 0; q < 4; q++) {
-      PetscInt  gp = 4 * e + q;
-      PetscBool now;
-      /* A band of width activationGap (or the traction bandTraction) around zero keeps
-         points at the edge of the contact zone, whose gaps and tractions are at round-off
-         level, from chattering between the sets: a closed point opens when its traction is
-         tensile beyond the band, an open point closes when it penetrates beyond it. */
-      {
-        const PetscReal *g = &c->gap[3 * gp], *n = &c->gpNormal[3 * gp];
-        const PetscReal  band = c->bandTraction[pair];
-        if (c->active[gp]) now = (c->closeOnly || tnOpen[gp] < band) ? PETSC_TRUE : PETSC_FALSE;
-        else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > c->activationGap ? PETSC_TRUE : PETSC_FALSE;
-      }
-      c->activeOlder[gp] = c->activeOld[gp];
-      c->activeOld[gp]   = c->active[gp];
-      if (now != c->active[gp]) {
-        loc[0]++;
-        c->dirty[e] = PETSC_TRUE;
-        if (!now) c->lambda[3 * gp] = c->lambda[3 * gp + 1] = c->lambda[3 * gp + 2] = 0;
-      }
-      c->active[gp] = now;
-      if (now) loc[1]++;
-      if (now != c->activeOlder[gp]) loc[2]++;
-    }
-  }
-  PetscCall(PetscFree(tnOpen));
-  PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
-  *nchanged  = glob[0];
-  c->nactive = glob[1];
-  /* once points only close (anti-cycling) the set grows and cannot cycle: a return to the set of
-     two iterations back is then the points opened just before closing again */
-  *cycling   = (!c->closeOnly && glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
-  PetscFunctionReturn(0);
-}
-
-/* Scales every pair's penalties by s and its activation band (the tension at which a closed
-   point opens) by band, keeping the current values in saved[3 * npairs] (normal, tangential,
-   band) so that RestorePenalties puts back the very same ones; every element is due for a
-   stiffness update either way. */
-PetscErrorCode BoltContactSetScalePenalties(BoltContactSet *c, PetscReal s, PetscReal band, PetscReal saved[])
-{
-  PetscFunctionBeginUser;
-  for (PetscInt p = 0; p < c->npairs; p++) {
-    saved[3 * p]     = c->epsN[p];
-    saved[3 * p + 1] = c->epsT[p];
-    saved[3 * p + 2] = c->bandTraction[p];
-    c->epsN[p] *= s;
-    c->epsT[p] *= s;
-    c->bandTraction[p] *= band;
-  }
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode BoltContactSetRestorePenalties(BoltContactSet *c, const PetscReal saved[])
-{
-  PetscFunctionBeginUser;
-  for (PetscInt p = 0; p < c->npairs; p++) {
-    c->epsN[p]         = saved[3 * p];
-    c->epsT[p]         = saved[3 * p + 1];
-    c->bandTraction[p] = saved[3 * p + 2];
-  }
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
-/* Puts a given active set in place (a stored preloaded state): the sets of the last two outer
-   iterations are taken to be the same, and every element is due for a stiffness update. */
-PetscErrorCode BoltContactSetSetActive(BoltContactSet *c, const PetscBool active[])
-{
-  PetscInt nact = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-    c->active[gp] = c->activeOld[gp] = c->activeOlder[gp] = active[gp];
-    if (active[gp]) nact++;
-  }
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
-  PetscCall(MPIU_Allreduce(&nact, &c->nactive, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
-  PetscFunctionReturn(0);
-}
-
-/* After a two-set cycle (BoltContactSetUpdateActive): the points that toggle between the sets
-   are closed, i.e. the union of the two sets. Closed is the conservative side: it lets no point
-   penetrate, at the price of a traction at the cycling points that the band would have let
-   open. Returns the number of points closed. */
-PetscErrorCode BoltContactSetCloseCycle(BoltContactSet *c, PetscInt *nclosed)
-{
-  PetscInt loc[2] = {0, 0}, glob[2];
-
-  PetscFunctionBeginUser;
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-    if (!c->active[gp] && c->activeOld[gp]) {
-      c->active[gp]     = PETSC_TRUE;
-      c->dirty[gp / 4] = PETSC_TRUE;
-      loc[0]++;
-    }
-    if (c->active[gp]) loc[1]++;
-  }
-  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, c->mesh->comm));
-  *nclosed   = glob[0];
-  c->nactive = glob[1];
-  PetscFunctionReturn(0);
-}
-
-/* fc = the contact forces of the multipliers on the local contact DOFs: -N' lambda on side a,
-   +N' lambda on side b (they enter the equations as K q + B' lambda = F). */
-PetscErrorCode BoltContactSetForces(BoltContactSet *c)
-{
-  PetscFunctionBeginUser;
-  PetscCall(BoltContactSetForcesOf(c, c->lambda));
   PetscFunctionReturn(0);
 }
 
@@ -758,114 +565,6 @@ static PetscErrorCode BoltContactForcesInto(BoltContactSet *c, const PetscReal l
     }
   }
   PetscCall(VecRestoreArray(fc, &f));
-  PetscFunctionReturn(0);
-}
-
-/* K_c of the active Gauss points in the global layout; only elements whose activity changed
-   are recomputed. */
-PetscErrorCode BoltContactSetStiffness(BoltContactSet *c, Mat *Kc)
-{
-  PetscScalar *v;
-  PetscInt     changed = 0, any;
-
-  PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    if (!c->dirty[e]) continue;
-    PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], &c->active[4 * e], &c->Ke[576 * e]));
-    c->dirty[e] = PETSC_FALSE;
-    changed++;
-  }
-  PetscCall(MPIU_Allreduce(&changed, &any, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
-  *Kc = c->Kc;
-  if (!any && c->KcAssembled) PetscFunctionReturn(0); /* nothing changed since the last call */
-  c->KcAssembled = PETSC_TRUE;
-#if defined(PETSC_USE_COMPLEX)
-  SETERRQ(c->mesh->comm, PETSC_ERR_SUP, "Real scalars only");
-#else
-  v = (PetscScalar *)c->Ke;
-#endif
-  PetscCall(MatSetValuesCOO(c->Kc, v, INSERT_VALUES));
-  PetscFunctionReturn(0);
-}
-
-/* The contact traction at a Gauss point: the trial traction lambda + P g where active (equal to
-   lambda once the augmentations converge; P g alone for pure penalty), zero elsewhere. */
-static void BoltContactTraction(BoltContactSet *c, PetscInt e, PetscInt gp, PetscReal t[3])
-{
-  if (!c->active[gp]) {
-    t[0] = t[1] = t[2] = 0;
-    return;
-  }
-  BoltContactTrialTraction(&c->lambda[3 * gp], &c->gap[3 * gp], &c->gpNormal[3 * gp], c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], t);
-}
-
-/* Sum over each pair of the normal contact force, int t.n dA (negative in compression). */
-PetscErrorCode BoltContactSetNormalForcePerPair(BoltContactSet *c, PetscReal force[])
-{
-  PetscFunctionBeginUser;
-  for (PetscInt p = 0; p < c->npairs; p++) force[p] = 0;
-  for (PetscInt e = 0; e < c->nelem; e++)
-    for (PetscInt q = 0; q < 4; q++) {
-      PetscInt         gp = 4 * e + q;
-      PetscReal        t[3];
-      const PetscReal *n = &c->gpNormal[3 * gp];
-      BoltContactTraction(c, e, gp, t);
-      force[c->elem[e].pair] += c->gpW[gp] * (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
-    }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, force, (PetscMPIInt)c->npairs, MPIU_REAL, MPI_SUM, c->mesh->comm));
-  PetscFunctionReturn(0);
-}
-
-/* Min and max normal traction over active points, and the largest tangential traction. */
-PetscErrorCode BoltContactSetTractionStats(BoltContactSet *c, PetscReal *tnMin, PetscReal *tnMax, PetscReal *ttMax)
-{
-  PetscReal mn = PETSC_MAX_REAL, mx = -PETSC_MAX_REAL, tt = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-    const PetscReal *n = &c->gpNormal[3 * gp];
-    PetscReal        lam[3], ln, t2 = 0;
-    if (!c->active[gp]) continue;
-    BoltContactTraction(c, gp / 4, gp, lam);
-    ln = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2];
-    mn = PetscMin(mn, ln);
-    mx = PetscMax(mx, ln);
-    for (PetscInt k = 0; k < 3; k++) t2 += PetscSqr(lam[k] - ln * n[k]);
-    tt = PetscMax(tt, PetscSqrtReal(t2));
-  }
-  PetscCall(MPIU_Allreduce(&mn, tnMin, 1, MPIU_REAL, MPI_MIN, c->mesh->comm));
-  PetscCall(MPIU_Allreduce(&mx, tnMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
-  PetscCall(MPIU_Allreduce(&tt, ttMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
-  PetscFunctionReturn(0);
-}
-
-/* Area-weighted inner product over the active Gauss points: sum w x.y (global). */
-PetscErrorCode BoltContactSetDot(BoltContactSet *c, const PetscReal x[], const PetscReal y[], PetscReal *dot)
-{
-  PetscReal loc = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
-    if (c->active[gp]) loc += c->gpW[gp] * (x[3 * gp] * y[3 * gp] + x[3 * gp + 1] * y[3 * gp + 1] + x[3 * gp + 2] * y[3 * gp + 2]);
-  PetscCall(MPIU_Allreduce(&loc, dot, 1, MPIU_REAL, MPI_SUM, c->mesh->comm));
-  PetscFunctionReturn(0);
-}
-
-/* Largest penetration -g.n over the active points (global); zeroes g at inactive points. */
-PetscErrorCode BoltContactSetPenetration(BoltContactSet *c, PetscReal g[], PetscReal *pen)
-{
-  PetscReal loc = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-    const PetscReal *n = &c->gpNormal[3 * gp];
-    if (!c->active[gp]) {
-      g[3 * gp] = g[3 * gp + 1] = g[3 * gp + 2] = 0;
-      continue;
-    }
-    loc = PetscMax(loc, -(g[3 * gp] * n[0] + g[3 * gp + 1] * n[1] + g[3 * gp + 2] * n[2]));
-  }
-  PetscCall(MPIU_Allreduce(&loc, pen, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   PetscFunctionReturn(0);
 }
 

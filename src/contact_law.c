@@ -1,17 +1,52 @@
-/* The contact law at one Gauss point: augmented Lagrangian with normal and tangential
-   penalties, stick with elastic slip only (no Coulomb slip yet). Physics only. */
+/* Contact laws at one Gauss point, registered by name (-contact_law) so that other laws plug in
+   beside the first. Physics only: no loops, no solvers. */
 #include "boltrom.h"
 
-/* Trial traction t = lambda + epsN (g.n) n + epsT (g - (g.n) n); g = u_b - u_a, n out of a. */
-void BoltContactTrialTraction(const PetscReal lambda[3], const PetscReal g[3], const PetscReal n[3], PetscReal epsN, PetscReal epsT, PetscReal t[3])
+PetscFunctionList BoltContactLawList = NULL;
+static PetscBool  BoltContactLawRegistered = PETSC_FALSE;
+
+/* stick: augmented Lagrangian with normal and tangential penalties, stick with elastic slip only
+   (no Coulomb limit). Trial traction t = lambda + epsN (g.n) n + epsT (g - (g.n) n), with the
+   gap g = u_b - u_a and n the outward normal of side a. */
+static void StickTraction(const PetscReal lambda[3], const PetscReal g[3], const PetscReal n[3], PetscReal epsN, PetscReal epsT, PetscReal t[3])
 {
   const PetscReal gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
 
   for (PetscInt k = 0; k < 3; k++) t[k] = lambda[k] + epsT * g[k] + (epsN - epsT) * gn * n[k];
 }
 
-/* Active where the trial normal traction is compressive. */
-PetscBool BoltContactIsActive(const PetscReal t[3], const PetscReal n[3])
+static PetscErrorCode BoltContactLawCreate_Stick(BoltContactLaw *law)
 {
-  return (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]) < 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  law->traction = StickTraction;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactLawRegister(const char name[], PetscErrorCode (*create)(BoltContactLaw *))
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListAdd(&BoltContactLawList, name, create));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactLawRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  if (BoltContactLawRegistered) PetscFunctionReturn(0);
+  BoltContactLawRegistered = PETSC_TRUE;
+  PetscCall(BoltContactLawRegister("stick", BoltContactLawCreate_Stick));
+  PetscFunctionReturn(0);
+}
+
+/* Fills law with the registered type's functions. */
+PetscErrorCode BoltContactLawSetType(MPI_Comm comm, const char type[], BoltContactLaw *law)
+{
+  PetscErrorCode (*create)(BoltContactLaw *) = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactLawRegisterAll());
+  PetscCall(PetscFunctionListFind(BoltContactLawList, type, &create));
+  PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "Unknown contact law '%s': -contact_law must be one of those bin/boltrom -help lists", type);
+  PetscCall((*create)(law));
+  PetscFunctionReturn(0);
 }

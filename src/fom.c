@@ -1,5 +1,5 @@
 /* The full-order operator: the assembled M, C, K, the load vectors, and the contact DOFs
-   reached through one scatter. */
+   reached through one scatter. Its contact law is the scene's (-contact_law, -contact_augment). */
 #include "boltrom.h"
 
 typedef struct {
@@ -28,7 +28,7 @@ static PetscErrorCode FOMContactForces(BoltOperator *op, const PetscReal lambda[
 static PetscErrorCode FOMContactStiffness(BoltOperator *op, Mat *Kc)
 {
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetStiffness(op->contact, Kc));
+  PetscCall(BoltContactStateStiffness(op->state, Kc));
   PetscFunctionReturn(0);
 }
 
@@ -41,6 +41,63 @@ static PetscErrorCode FOMProbe(BoltOperator *op, Vec q, PetscReal *value)
   PetscFunctionReturn(0);
 }
 
+/* Checkpoints: each vector with dof_keys, the key of each DOF in the mesh as read
+   (3 x vertex + component), so that a checkpoint does not depend on the partition. */
+static PetscErrorCode FOMVectorsSave(BoltOperator *op, PetscViewer v, PetscInt n, const char *const names[], Vec x[])
+{
+  Vec keys;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltMeshDofKeys(op->contact->mesh, x[0], &keys));
+  PetscCall(PetscObjectSetName((PetscObject)keys, "dof_keys"));
+  PetscCall(VecView(keys, v));
+  PetscCall(VecDestroy(&keys));
+  PetscCall(BoltHDF5WriteVecs(v, op->comm, n, names, x, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* Every rank reads the keyed data and picks its own rows; missing counts the DOFs not found. */
+static PetscErrorCode FOMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt nvec, const char *const names[], Vec y[], PetscInt *missing)
+{
+  BoltKeyIndex       ix = {0, NULL, NULL};
+  Vec                keys;
+  const PetscScalar *kmine;
+  PetscReal         *kall, *x;
+  PetscInt           n, nloc;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltReadAll(v, op->comm, "dof_keys", &n, &kall));
+  PetscCall(BoltKeyIndexCreate(n, kall, &ix));
+  PetscCall(PetscFree(kall));
+  PetscCall(BoltMeshDofKeys(op->contact->mesh, y[0], &keys));
+  PetscCall(VecGetLocalSize(y[0], &nloc));
+  PetscCall(VecGetArrayRead(keys, &kmine));
+  for (PetscInt f = 0; f < nvec; f++) {
+    PetscScalar *a;
+    PetscCall(BoltReadAll(v, op->comm, names[f], &n, &x));
+    PetscCall(VecGetArray(y[f], &a));
+    for (PetscInt i = 0; i < nloc; i++) {
+      PetscInt row;
+      PetscCall(BoltKeyIndexFind(&ix, (PetscInt)PetscRealPart(kmine[i]), &row));
+      if (row < 0) (*missing)++;
+      else a[i] = x[row];
+    }
+    PetscCall(VecRestoreArray(y[f], &a));
+    PetscCall(PetscFree(x));
+  }
+  PetscCall(VecRestoreArrayRead(keys, &kmine));
+  PetscCall(VecDestroy(&keys));
+  PetscCall(BoltKeyIndexDestroy(&ix));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FOMDestroy(BoltOperator *op)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(op->ctx));
+  PetscFunctionReturn(0);
+}
+
 /* transient: with the damping matrix; static solves need none (at 562k DOFs it is a 1.5 GB copy
    of the stiffness's pattern) */
 PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, PetscBool transient, BoltOperator **opp)
@@ -49,47 +106,22 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   BoltFOMCtx   *ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscNew(&op));
+  PetscCall(BoltOperatorCreate(asmb->mesh->comm, "FOM", contact, &op));
   PetscCall(PetscNew(&ctx));
-  ctx->loads = loads;
-  op->name       = "FOM";
-  op->comm       = asmb->mesh->comm;
-  op->solverType = MATSOLVERMUMPS;
+  ctx->loads           = loads;
+  op->solverType       = MATSOLVERMUMPS;
   op->exactConstraints = PETSC_TRUE;
-  op->augment          = contact->augmentOption;
-  op->meshLayout       = PETSC_TRUE;
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
-  op->M = asmb->M;
-  op->K = asmb->K;
-  PetscCall(PetscObjectReference((PetscObject)op->M));
-  PetscCall(PetscObjectReference((PetscObject)op->K));
+  PetscCall(BoltOperatorSetSystem(op, asmb->M, NULL, asmb->K, loads->load, loads->preload));
   if (transient) PetscCall(BoltAssemblerDamping(asmb, &op->C));
-  op->load    = loads->load;
-  op->preload = loads->preload;
-  PetscCall(PetscObjectReference((PetscObject)op->load));
-  PetscCall(PetscObjectReference((PetscObject)op->preload));
-  op->contact              = contact;
-  op->ctx                  = ctx;
-  op->contactDisplacements = FOMContactDisplacements;
-  op->contactForces        = FOMContactForces;
-  op->contactStiffness     = FOMContactStiffness;
-  op->probe                = FOMProbe;
-  *opp                     = op;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode BoltFOMDestroy(BoltOperator **opp)
-{
-  BoltOperator *op = *opp;
-
-  PetscFunctionBeginUser;
-  if (!op) PetscFunctionReturn(0);
-  PetscCall(MatDestroy(&op->M));
-  PetscCall(MatDestroy(&op->K));
-  PetscCall(MatDestroy(&op->C));
-  PetscCall(VecDestroy(&op->load));
-  PetscCall(VecDestroy(&op->preload));
-  PetscCall(PetscFree(op->ctx));
-  PetscCall(PetscFree(*opp));
+  op->ctx                      = ctx;
+  op->ops.contactDisplacements = FOMContactDisplacements;
+  op->ops.contactForces        = FOMContactForces;
+  op->ops.contactStiffness     = FOMContactStiffness;
+  op->ops.probe                = FOMProbe;
+  op->ops.vectorsSave          = FOMVectorsSave;
+  op->ops.vectorsLoad          = FOMVectorsLoad;
+  op->ops.destroy              = FOMDestroy;
+  *opp                         = op;
   PetscFunctionReturn(0);
 }

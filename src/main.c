@@ -224,7 +224,7 @@ static PetscErrorCode BoltRun(void)
   PetscCall(MatCreateVecs(asmb->K, &u, NULL));
   PetscCall(PetscObjectSetName((PetscObject)u, "displacement"));
   PetscCall(BoltLoadSetSetUp(loads, u));
-  PetscCall(BoltContactSetSetUpState(contact, u)); /* one contact state serves tied, FOM and ROM */
+  PetscCall(BoltContactSetSetUpQuadrature(contact, u)); /* each model makes its own contact state on it */
   PetscCall(PetscLogStagePop());
   PetscCall(BoltMeshView(mesh, out));
   PetscCall(BoltAssemblerView(asmb, out));
@@ -304,7 +304,6 @@ static PetscErrorCode BoltRun(void)
   }
   if (opt.fom) {
     PetscReal force[BOLTROM_MAX_PAIRS];
-    PetscCall(BoltContactSetResetState(contact));
     PetscCall(BoltFOMCreate(asmb, contact, loads, PETSC_TRUE, &fomOp));
     PetscCall(BoltNewmarkCreate(fomOp, &fomNm));
     PetscCall(PetscSNPrintf(fomNm->checkpointBase, sizeof(fomNm->checkpointBase), "%s/%s", opt.outputDir, opt.outputName));
@@ -314,17 +313,17 @@ static PetscErrorCode BoltRun(void)
     PetscCall(PetscLogStagePush(boltLog.stagePreload));
     PetscCall(BoltNewmarkPreload(fomNm));
     PetscCall(PetscLogStagePop());
-    PetscCall(BoltContactSetNormalForcePerPair(contact, force));
+    PetscCall(BoltContactStateNormalForcePerPair(fomOp->state, force));
     PetscCall(PetscPrintf(comm, "Preload %g N: static contact solve in %g outer / %g inner iterations; normal force per pair [N]:", (double)loads->preloadForce, (double)fomNm->staticOuter, (double)fomNm->staticInner));
     for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(PetscPrintf(comm, " %s %.6f", contact->pairName[p], (double)force[p]));
     PetscCall(PetscPrintf(comm, "\n"));
     for (PetscInt p = 0; p < contact->npairs; p++) preloadForce[p] = force[p];
     PetscCall(BoltMemoryPrint(comm, "the FOM's preload"));
-    PetscCall(BoltContactSetTractionStats(contact, &tractionStats[0], &tractionStats[1], &tractionStats[2]));
-    preloadActive = contact->nactive;
-    staticPenetration = fomNm->lastPenetration;
-    staticChange      = fomNm->lastChange;
-    if (opt.rom) PetscCall(BoltNewmarkPreloadStateGet(fomNm, &fomPreload)); /* the ROM's offline phase starts from it */
+    PetscCall(BoltContactStateTractionStats(fomOp->state, &tractionStats[0], &tractionStats[1], &tractionStats[2]));
+    preloadActive = fomOp->state->nactive;
+    staticPenetration = fomNm->dual->lastPenetration;
+    staticChange      = fomNm->dual->lastChange;
+    if (opt.rom) PetscCall(BoltPreloadStateCreate(fomOp, fomNm->q, fomNm->staticOuter, fomNm->staticInner, &fomPreload)); /* the ROM's offline phase starts from it */
     PetscCall(PetscLogStagePush(boltLog.stageTransient));
     PetscCall(BoltNewmarkRun(fomNm));
     PetscCall(PetscLogStagePop());
@@ -337,7 +336,6 @@ static PetscErrorCode BoltRun(void)
   }
   if (opt.rom) {
     BoltReductionOptions ropt;
-    PetscCall(BoltContactSetResetState(contact));
     PetscCall(BoltReductionOptionsSetFromOptions(comm, &ropt));
     ropt.fomPreload = fomPreload;
     PetscCall(BoltROMBuild(&ropt, asmb, contact, loads, &rom));
@@ -346,8 +344,8 @@ static PetscErrorCode BoltRun(void)
     if (opt.romCheckS0) PetscCall(BoltROMCheckAtS0(rom, romOp, asmb, contact, loads, &romCheckError));
     if (opt.exportDir[0]) { /* the reduced tied joint: K_r + V' K_c V with every contact point active */
       Mat Kcr, Kt;
-      PetscCall(BoltContactSetResetState(contact));
-      PetscCall(romOp->contactStiffness(romOp, &Kcr));
+      PetscCall(BoltContactStateReset(romOp->state));
+      PetscCall(romOp->ops.contactStiffness(romOp, &Kcr));
       PetscCall(MatDuplicate(rom->Kr, MAT_COPY_VALUES, &Kt));
       PetscCall(MatAXPY(Kt, 1.0, Kcr, SAME_NONZERO_PATTERN));
       PetscCall(BoltExportMatrix(Kt, opt.exportDir, "rom_K_tied.petsc"));
@@ -487,18 +485,18 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONInt(&j, "steps", fomNm->nsteps));
       PetscCall(BoltJSONReal(&j, "dt", fomNm->dt));
       PetscCall(BoltJSONReal(&j, "online_s", fomNm->tOnline));
-      PetscCall(BoltJSONReal(&j, "contact_stiffness_s", fomNm->tContactStiffness));
-      PetscCall(BoltJSONReal(&j, "displacements_s", fomNm->tDisplacements));
-      PetscCall(BoltJSONReal(&j, "contact_forces_s", fomNm->tContactForces));
-      PetscCall(BoltJSONInt(&j, "factorizations", fomNm->factorizations));
-      PetscCall(BoltJSONInt(&j, "solves", fomNm->solves));
-      PetscCall(BoltJSONInt(&j, "outer_total", fomNm->outerTotal));
-      PetscCall(BoltJSONInt(&j, "inner_total", fomNm->innerTotal));
-      PetscCall(BoltJSONInt(&j, "outer_max", fomNm->outerMax));
-      PetscCall(BoltJSONInt(&j, "inner_max", fomNm->innerMax));
-      PetscCall(BoltJSONInt(&j, "failures", fomNm->failures));
-      PetscCall(BoltJSONInt(&j, "cycles", fomNm->cycles));
-      PetscCall(BoltJSONInt(&j, "active_points", contact->nactive));
+      PetscCall(BoltJSONReal(&j, "contact_stiffness_s", fomNm->dual->tContactStiffness));
+      PetscCall(BoltJSONReal(&j, "displacements_s", fomNm->dual->tDisplacements));
+      PetscCall(BoltJSONReal(&j, "contact_forces_s", fomNm->dual->tContactForces));
+      PetscCall(BoltJSONInt(&j, "factorizations", fomNm->dual->factorizations));
+      PetscCall(BoltJSONInt(&j, "solves", fomNm->dual->solves));
+      PetscCall(BoltJSONInt(&j, "outer_total", fomNm->dual->outerTotal));
+      PetscCall(BoltJSONInt(&j, "inner_total", fomNm->dual->innerTotal));
+      PetscCall(BoltJSONInt(&j, "outer_max", fomNm->dual->outerMax));
+      PetscCall(BoltJSONInt(&j, "inner_max", fomNm->dual->innerMax));
+      PetscCall(BoltJSONInt(&j, "failures", fomNm->dual->failures));
+      PetscCall(BoltJSONInt(&j, "cycles", fomNm->dual->cycles));
+      PetscCall(BoltJSONInt(&j, "active_points", fomOp->state->nactive));
       PetscCall(BoltJSONInt(&j, "contact_points", contact->ngpGlobal));
       PetscCall(BoltJSONReal(&j, "probe_final", fomNm->probeValue[fomNm->nsteps]));
       {
@@ -536,15 +534,15 @@ static PetscErrorCode BoltRun(void)
       PetscCall(BoltJSONInt(&j, "closed_krylov", rom->nClosed));
       PetscCall(BoltJSONInt(&j, "steps", romNm->nsteps));
       PetscCall(BoltJSONReal(&j, "online_s", romNm->tOnline));
-      PetscCall(BoltJSONReal(&j, "contact_stiffness_s", romNm->tContactStiffness));
-      PetscCall(BoltJSONReal(&j, "displacements_s", romNm->tDisplacements));
-      PetscCall(BoltJSONReal(&j, "contact_forces_s", romNm->tContactForces));
-      PetscCall(BoltJSONInt(&j, "factorizations", romNm->factorizations));
-      PetscCall(BoltJSONInt(&j, "solves", romNm->solves));
-      PetscCall(BoltJSONInt(&j, "outer_total", romNm->outerTotal));
-      PetscCall(BoltJSONInt(&j, "inner_total", romNm->innerTotal));
-      PetscCall(BoltJSONInt(&j, "failures", romNm->failures));
-      PetscCall(BoltJSONInt(&j, "cycles", romNm->cycles));
+      PetscCall(BoltJSONReal(&j, "contact_stiffness_s", romNm->dual->tContactStiffness));
+      PetscCall(BoltJSONReal(&j, "displacements_s", romNm->dual->tDisplacements));
+      PetscCall(BoltJSONReal(&j, "contact_forces_s", romNm->dual->tContactForces));
+      PetscCall(BoltJSONInt(&j, "factorizations", romNm->dual->factorizations));
+      PetscCall(BoltJSONInt(&j, "solves", romNm->dual->solves));
+      PetscCall(BoltJSONInt(&j, "outer_total", romNm->dual->outerTotal));
+      PetscCall(BoltJSONInt(&j, "inner_total", romNm->dual->innerTotal));
+      PetscCall(BoltJSONInt(&j, "failures", romNm->dual->failures));
+      PetscCall(BoltJSONInt(&j, "cycles", romNm->dual->cycles));
       PetscCall(BoltJSONReal(&j, "probe_final", romNm->probeValue[romNm->nsteps]));
       if (opt.romCheckS0) PetscCall(BoltJSONReal(&j, "check_s0_error", romCheckError));
       if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(&j, "orthogonality", rom->orthogonality));
@@ -572,9 +570,9 @@ static PetscErrorCode BoltRun(void)
   PetscCall(BoltNewmarkDestroy(&fomNm));
   PetscCall(BoltPreloadStateDestroy(&fomPreload));
   PetscCall(BoltNewmarkDestroy(&romNm));
-  PetscCall(BoltROMOperatorDestroy(&romOp));
+  PetscCall(BoltOperatorDestroy(&romOp));
   PetscCall(BoltROMDestroy(&rom));
-  PetscCall(BoltFOMDestroy(&fomOp));
+  PetscCall(BoltOperatorDestroy(&fomOp));
   PetscCall(BoltLoadSetDestroy(&loads));
   PetscCall(BoltContactSetDestroy(&contact));
   PetscCall(BoltAssemblerDestroy(&asmb));

@@ -14,7 +14,7 @@ PetscErrorCode BoltMeshCreate(MPI_Comm comm, BoltMesh **mesh)
   m->comm  = comm;
   m->clamp = PETSC_TRUE;
   PetscCall(PetscStrncpy(m->clampGroup, "clamp", sizeof(m->clampGroup)));
-  PetscCall(PetscStrncpy(m->partitioner, "ptscotch", sizeof(m->partitioner))); /* smaller edge cut than METIS from level 2 up (README) */
+  PetscCall(PetscStrncpy(m->partitioner, "ptscotch", sizeof(m->partitioner))); /* smaller edge cut than METIS on fine meshes (docs/model.md) */
   PetscCall(PetscStrncpy(m->partMaterialMap, defaultPartMaterials, sizeof(m->partMaterialMap)));
   m->formulation = HEX8_INCOMPATIBLE;
   *mesh          = m;
@@ -28,7 +28,7 @@ PetscErrorCode BoltMeshSetFromOptions(BoltMesh *m)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(m->comm, NULL, "Mesh and model", "boltrom");
-  PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (.msh) following the physical-group convention of the README", NULL, m->filename, m->filename, sizeof(m->filename), &set));
+  PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (.msh) with the physical groups of docs/model.md", NULL, m->filename, m->filename, sizeof(m->filename), &set));
   PetscCall(PetscOptionsString("-clamp_group", "Physical group whose nodes are fully clamped", NULL, m->clampGroup, m->clampGroup, sizeof(m->clampGroup), NULL));
   PetscCall(PetscOptionsBool("-clamp", "Remove the clamp group's DOFs (false: free-free model)", NULL, m->clamp, &m->clamp, NULL));
   PetscCall(PetscOptionsString("-partitioner", "Mesh partitioner: metis (boltrom's, through a shell partitioner) or a PETSc partitioner type (ptscotch, simple, ...)", NULL, m->partitioner, m->partitioner, sizeof(m->partitioner), NULL));

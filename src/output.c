@@ -75,6 +75,22 @@ PetscErrorCode BoltHDF5WriteValues(PetscViewer v, MPI_Comm comm, const char name
   PetscFunctionReturn(0);
 }
 
+/* Each vector's local values as the dataset names[f] (BoltHDF5WriteValues: rootOnly for vectors
+   that are the same on every rank). */
+PetscErrorCode BoltHDF5WriteVecs(PetscViewer v, MPI_Comm comm, PetscInt n, const char *const names[], Vec x[], PetscBool rootOnly)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt f = 0; f < n; f++) {
+    const PetscScalar *a;
+    PetscInt           nloc;
+    PetscCall(VecGetLocalSize(x[f], &nloc));
+    PetscCall(VecGetArrayRead(x[f], &a));
+    PetscCall(BoltHDF5WriteValues(v, comm, names[f], nloc, 1, a, rootOnly));
+    PetscCall(VecRestoreArrayRead(x[f], &a));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* A whole dataset on every rank (freed by the caller). */
 PetscErrorCode BoltReadAll(PetscViewer v, MPI_Comm comm, const char name[], PetscInt *n, PetscReal **x)
 {

@@ -190,13 +190,16 @@ static PetscErrorCode BoltProjectVec(BV V, Vec f, Vec *fr)
    shape, which lets a stiffer penalty carry the increments without locking. */
 static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscBool keepActive, const BoltPreloadState *shared, Vec extra[], Vec *preload)
 {
-  BoltOperator *op;
-  BoltNewmark  *nm;
-  PetscReal     F = loads->preloadForce, epsFOM[3 * BOLTROM_MAX_PAIRS];
+  BoltOperator     *op;
+  BoltContactState *s;
+  BoltDual         *dual;
+  Vec               q, rhs;
+  PetscReal         F = loads->preloadForce, outer, inner;
+  PetscInt          nout, nin;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetResetState(c));
   PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &op)); /* static solves only: no damping */
+  s = op->state;
   /* the calibration scales the preload vector and the load response may scale the load: work
      on copies, the scene's stay as they are */
   PetscCall(VecDestroy(&op->preload));
@@ -205,31 +208,45 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(VecDestroy(&op->load));
   PetscCall(VecDuplicate(loads->load, &op->load));
   PetscCall(VecCopy(loads->load, op->load));
-  PetscCall(BoltNewmarkCreate(op, &nm));
-  PetscCall(BoltNewmarkSetFromOptions(nm));
-  nm->preloadTarget = F;
-  PetscCall(BoltNewmarkSetUp(nm));
-  if (shared) PetscCall(BoltNewmarkPreloadStateSet(nm, shared)); /* the FOM of this run solved it */
-  else PetscCall(BoltNewmarkPreload(nm));
-  PetscCall(VecDuplicate(nm->q, &extra[0]));
-  PetscCall(VecCopy(nm->q, extra[0]));
+  PetscCall(BoltDualCreate(op, &dual));
+  PetscCall(BoltDualSetFromOptions(dual));
+  PetscCall(BoltDualSetUp(dual));
+  PetscCall(VecDuplicate(op->preload, &q));
+  PetscCall(VecDuplicate(op->preload, &rhs));
+  if (shared) { /* the FOM of this run solved it */
+    PetscCall(BoltPreloadStateApply(shared, op, q));
+    outer = shared->outer;
+    inner = shared->inner;
+  } else {
+    /* as the FOM's time integrator would solve it (newmark.c): the same two scene options */
+    PetscBool calibrate = PETSC_TRUE, withLoad = PETSC_FALSE;
+    PetscCall(PetscOptionsGetBool(NULL, NULL, "-preload_calibrate", &calibrate, NULL));
+    PetscCall(PetscOptionsGetBool(NULL, NULL, "-static_contact_load", &withLoad, NULL));
+    PetscCall(VecCopy(op->preload, rhs));
+    if (withLoad) PetscCall(VecAXPY(rhs, 1.0, op->load));
+    PetscCall(BoltDualSolveStatic(dual, rhs, q, calibrate && !withLoad ? F : 0, &nout, &nin));
+    outer = nout;
+    inner = nin;
+  }
+  PetscCall(VecDuplicate(q, &extra[0]));
+  PetscCall(VecCopy(q, extra[0]));
   PetscCall(VecDuplicate(op->preload, preload));
   PetscCall(VecCopy(op->preload, *preload));
   PetscCall(PetscMalloc3(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0));
   PetscCall(BoltContactSetScatter(c, extra[0]));
-  PetscCall(BoltContactSetGaps(c));
+  PetscCall(BoltContactStateGaps(s));
   for (PetscInt k = 0; k < 12 * c->nelem; k++) {
-    rom->lambda0[k] = c->lambda[k] / F;
-    rom->gap0[k]    = c->gap[k] / F;
+    rom->lambda0[k] = s->lambda[k] / F;
+    rom->gap0[k]    = s->gap[k] / F;
   }
-  PetscCall(PetscArraycpy(rom->active0, c->active, 4 * c->nelem));
+  PetscCall(PetscArraycpy(rom->active0, s->active, 4 * c->nelem));
   /* The solves below end with the active gaps closed, and the multipliers that close them do not
      depend on the penalty, nor does the active-set test (multipliers against the band). A stiffer
-     penalty clusters the multiplier CG's operator B (K + eps B'B)^-1 B' near 1/eps: at level 1.8
-     the first closed-contact vector took 1425 iterations at the FOM's penalty. The preload itself
-     stays the FOM's. */
-  PetscCall(BoltContactSetScalePenalties(c, staticPenaltyScale, 1.0, epsFOM)); /* the band as it is */
-  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (double)nm->staticOuter, (double)nm->staticInner, c->nactive, c->ngpGlobal));
+     penalty clusters the multiplier CG's operator B (K + eps B'B)^-1 B' near 1/eps, so the CG
+     needs far fewer iterations on fine meshes. The preload itself
+     stays the FOM's; this operator's state is its own, so the FOM's penalties are not touched. */
+  PetscCall(BoltContactStateSetPenaltyScale(s, staticPenaltyScale, 1.0)); /* the band as it is */
+  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (double)outer, (double)inner, s->nactive, c->ngpGlobal));
   /* the load on top, from the preloaded state (multipliers warm, active set free to change).
      The contact loop's tolerance is relative to the preload's multipliers, so a load below
      1e-3 of the preload's norm is raised to that (its response then rises above the loop's
@@ -240,51 +257,52 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(VecNorm(op->preload, NORM_2, &npre));
   raise = nload > 0 ? PetscMax(1.0, 1e-3 * npre / nload) : 1.0;
   PetscCall(VecScale(op->load, raise));
-  nm->staticWithLoad = PETSC_TRUE;
-  PetscCall(BoltNewmarkPreload(nm));
-  PetscCall(VecDuplicate(nm->q, &extra[1]));
-  PetscCall(VecWAXPY(extra[1], -1.0, extra[0], nm->q));
+  PetscCall(VecCopy(op->preload, rhs));
+  PetscCall(VecAXPY(rhs, 1.0, op->load));
+  PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+  PetscCall(VecDuplicate(q, &extra[1]));
+  PetscCall(VecWAXPY(extra[1], -1.0, extra[0], q));
   PetscCall(VecScale(extra[1], 1.0 / raise));
-  PetscCall(PetscPrintf(rom->comm, "; load response (load x %g) %g inner iterations\n", (double)raise, (double)nm->staticInner));
+  PetscCall(PetscPrintf(rom->comm, "; load response (load x %g) %g inner iterations\n", (double)raise, (double)nin));
   /* closed-contact Krylov vectors: w_k = static response, from the preloaded state, to M w_(k-1),
      so the basis holds the closed joint's low-frequency shapes too. Forced at 1e-3 of the
      preload's norm: small enough that the joint stays closed, large enough to rise above the
      contact loop's residual (the shapes are those of the closed joint; their scale is lost in
      the orthonormalisation). By default they keep the preloaded active set: the forcing, spread
-     over the whole volume, opened 280 rim points at level 1.8 and 6000 at level 3.2, and the
-     basis of that opened joint was 0.67 % off at level 1.8 in paper-step, against 0.32 % with the
-     set kept */
+     over the whole volume, opens points at the rim on fine meshes, and the basis of that opened
+     joint is less accurate than the one with the set kept (docs/reduction.md) */
   if (nClosed > 0) {
     Vec       f      = op->load; /* this solve's own copy: the forcing of each vector in turn */
     PetscReal nforce = 1e-3 * npre, nf;
     PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)nforce, (double)nload, (double)npre));
     if (keepActive) {
-      PetscCall(BoltContactSetSetActive(c, rom->active0));
-      nm->keepStaticActiveSet = PETSC_TRUE;
+      PetscCall(BoltContactStateSetActive(s, rom->active0));
+      dual->keepActiveSet = PETSC_TRUE;
     }
     for (PetscInt k = 0; k < nClosed; k++) {
       PetscCall(MatMult(asmb->M, extra[1 + k], f));
       PetscCall(VecNorm(f, NORM_2, &nf));
       PetscCheck(nf > 0, rom->comm, PETSC_ERR_NOT_CONVERGED, "closed-contact Krylov vector %" PetscInt_FMT " is zero", k + 1);
       PetscCall(VecScale(f, (nforce > 0 ? nforce : 1.0) / nf));
-      PetscCall(BoltNewmarkPreload(nm));
-      PetscCall(VecDuplicate(nm->q, &extra[2 + k]));
-      PetscCall(VecWAXPY(extra[2 + k], -1.0, extra[0], nm->q));
-      PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov vector %" PetscInt_FMT ": %g outer / %g inner iterations, %" PetscInt_FMT " points closed\n", k + 1, (double)nm->staticOuter, (double)nm->staticInner, c->nactive));
+      PetscCall(VecCopy(op->preload, rhs));
+      PetscCall(VecAXPY(rhs, 1.0, f));
+      PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+      PetscCall(VecDuplicate(q, &extra[2 + k]));
+      PetscCall(VecWAXPY(extra[2 + k], -1.0, extra[0], q));
+      PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", k + 1, nout, nin, s->nactive));
     }
-    nm->keepStaticActiveSet = PETSC_FALSE;
   }
-  PetscCall(BoltContactSetRestorePenalties(c, epsFOM));
-  PetscCall(BoltNewmarkDestroy(&nm));
-  PetscCall(BoltFOMDestroy(&op));
-  PetscCall(BoltContactSetResetState(c));
+  PetscCall(VecDestroy(&q));
+  PetscCall(VecDestroy(&rhs));
+  PetscCall(BoltDualDestroy(&dual));
+  PetscCall(BoltOperatorDestroy(&op));
   PetscFunctionReturn(0);
 }
 
 /* Appends the static shapes to the basis, orthonormalised against it; dependent ones are
-   dropped. The remainders are printed: the ROM without interface reduction has shapes within
-   1e-8 of its Krylov vectors' span, whose round-off the orthogonalisation then amplifies (README:
-   its histories built on 1 and 2 ranks differ by 4e-7 to 4e-5). */
+   dropped. The remainders are printed: without interface reduction a shape can lie very close to
+   the Krylov vectors' span, and the orthogonalisation then amplifies round-off (separate builds
+   on different rank counts differ more than their Krylov vectors do; docs/reduction.md). */
 static PetscErrorCode BoltBasisAppend(BV V, PetscInt nv, Vec v[], PetscInt *added)
 {
   PetscInt k, j = 0;
@@ -330,7 +348,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
      close every active gap are not unique (their signs, which decide the active set, are
      arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps
      the reduced contact problem well posed, so it is the default there. */
-  rom->augment = o->augmentSet ? o->augment : (PetscBool)(contact->augmentOption && o->nCCM + o->nJIM == 0);
+  rom->augment = o->augmentSet ? o->augment : (PetscBool)(contact->augment && o->nCCM + o->nJIM == 0);
   PetscCall(BoltKrylovCreate(o->comm, &kry));
   PetscCall(BoltKrylovSetFromOptions(kry));
   PetscCall(BoltROMFingerprint(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, rom->fingerprint, sizeof(rom->fingerprint)));
@@ -340,7 +358,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   /* Against a FOM that closes its gaps the increments want a near-hard penalty: 500 x the paper's
      is 1e5 E/m, where the penalty law alone matches the augmented FOM. Without the closed-contact
      Krylov shapes so stiff a penalty locks the reduced interface, and 20 x is the best (README). */
-  rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augmentOption ? (o->nClosed > 0 ? 500.0 : 20.0) : 1.0);
+  rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augment ? (o->nClosed > 0 ? 500.0 : 20.0) : 1.0);
   /* Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
      at the rim of the preloaded zone the FOM's band lets such errors open points the FOM keeps
      closed. A wider band helps there but not in paper-step (README), so 1 stays the default */
@@ -503,7 +521,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscFunctionReturn(0);
 }
 
-/* Errors of a ROM history against the FOM's (DESIGN section 4): relative L2 over all steps, and
+/* Errors of a ROM history against the FOM's (docs/reduction.md, "Errors and speedup"): relative L2 over all steps, and
    the mean pointwise relative error over the steps where |u_FOM| > 1% of its maximum. */
 PetscErrorCode BoltHistoryErrors(PetscInt n, const PetscReal fom[], const PetscReal rom[], PetscReal *eL2, PetscReal *eMean)
 {

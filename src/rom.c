@@ -78,8 +78,9 @@ static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[
 
 static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
 {
-  BoltROM        *rom = (BoltROM *)op->ctx;
-  BoltContactSet *c   = rom->contact;
+  BoltROM          *rom = (BoltROM *)op->ctx;
+  BoltContactSet   *c   = rom->contact;
+  BoltContactState *s   = op->state;
   const PetscInt  n   = rom->n;
   PetscInt        ndirty = 0, *dirty = rom->dirtyElems;
   PetscReal       bound = 0, *delta = rom->dMe, *T = rom->work2, *dK = rom->dK, Knew[576];
@@ -93,15 +94,15 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
      element whose points changed, and a bound of its reduced part for the exact sum */
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscReal *d = &delta[144 * ndirty], size = 0;
-    if (!c->dirty[e]) continue;
-    PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, c->epsN[c->elem[e].pair], c->epsT[c->elem[e].pair], &c->active[4 * e], Knew));
+    if (!s->dirty[e]) continue;
+    PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], Knew));
     for (PetscInt a = 0; a < 12; a++)
       for (PetscInt b = 0; b < 12; b++) {
         d[12 * a + b]                 = Knew[24 * a + b] - rom->Ke[144 * e + 12 * a + b];
         rom->Ke[144 * e + 12 * a + b] = Knew[24 * a + b];
         size += PetscAbsReal(d[12 * a + b]);
       }
-    c->dirty[e] = PETSC_FALSE;
+    s->dirty[e] = PETSC_FALSE;
     bound       = PetscMax(bound, PetscSqr(rom->DeMax[e]) * size);
     dirty[ndirty++] = e;
   }
@@ -150,38 +151,106 @@ static PetscErrorCode ROMProbe(BoltOperator *op, Vec q, PetscReal *value)
   PetscFunctionReturn(0);
 }
 
+/* Checkpoints: the reduced vectors as they are (the same on every rank), written by rank 0. */
+static PetscErrorCode ROMVectorsSave(BoltOperator *op, PetscViewer v, PetscInt n, const char *const names[], Vec x[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltHDF5WriteVecs(v, op->comm, n, names, x, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ROMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt nvec, const char *const names[], Vec y[], PetscInt *missing)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt f = 0; f < nvec; f++) {
+    PetscScalar *a;
+    PetscReal   *x;
+    PetscInt     n, nloc;
+    PetscCall(VecGetLocalSize(y[f], &nloc));
+    PetscCall(BoltReadAll(v, op->comm, names[f], &n, &x));
+    PetscCheck(n == nloc, op->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint holds %" PetscInt_FMT " reduced coordinates, this ROM has %" PetscInt_FMT, n, nloc);
+    PetscCall(VecGetArray(y[f], &a));
+    for (PetscInt i = 0; i < nloc; i++) a[i] = x[i];
+    PetscCall(VecRestoreArray(y[f], &a));
+    PetscCall(PetscFree(x));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The reduced contact stiffness is a sum updated element by element: its round-off depends on
+   the path, so a checkpoint keeps it as it is rather than rebuilding it. */
+static PetscErrorCode ROMStateSave(BoltOperator *op, PetscViewer v)
+{
+  Mat                Kc;
+  const PetscScalar *a;
+  PetscInt           nr;
+
+  PetscFunctionBeginUser;
+  PetscCall(ROMContactStiffness(op, &Kc));
+  PetscCall(MatGetSize(Kc, &nr, NULL));
+  PetscCall(MatDenseGetArrayRead(Kc, &a));
+  PetscCall(BoltHDF5WriteValues(v, op->comm, "reduced_contact_stiffness", nr * nr, 1, a, PETSC_TRUE));
+  PetscCall(MatDenseRestoreArrayRead(Kc, &a));
+  PetscFunctionReturn(0);
+}
+
+/* After the contact state was restored: K_cr brought up to date, then replaced by the saved sum. */
+static PetscErrorCode ROMStateLoad(BoltOperator *op, PetscViewer v)
+{
+  Mat          Kc;
+  PetscScalar *a;
+  PetscReal   *x;
+  PetscInt     n, nr;
+
+  PetscFunctionBeginUser;
+  PetscCall(ROMContactStiffness(op, &Kc));
+  PetscCall(MatGetSize(Kc, &nr, NULL));
+  PetscCall(BoltReadAll(v, op->comm, "reduced_contact_stiffness", &n, &x));
+  PetscCheck(n == nr * nr, op->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint is damaged (reduced contact stiffness of %" PetscInt_FMT " values)", n);
+  PetscCall(MatDenseGetArray(Kc, &a));
+  for (PetscInt i = 0; i < n; i++) a[i] = x[i];
+  PetscCall(MatDenseRestoreArray(Kc, &a));
+  PetscCall(MatAssemblyBegin(Kc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Kc, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscFree(x));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
+{
+  BoltROM *rom = (BoltROM *)op->ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced dimension %" PetscInt_FMT ", penalties %g x the FOM's, opening band %g x\n", rom->n, (double)rom->penaltyScale, (double)rom->bandScale));
+  PetscFunctionReturn(0);
+}
+
+/* The ROM's operator: its matrices, and its own contact state with the ROM's law, penalties and
+   opening band. */
 PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 {
   BoltOperator *op;
   PetscInt      n = rom->n;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscNew(&op));
-  op->name       = "ROM";
-  op->comm       = rom->comm;
-  op->solverType = MATSOLVERPETSC;
+  PetscCall(BoltOperatorCreate(rom->comm, "ROM", rom->contact, &op));
+  op->solverType       = MATSOLVERPETSC;
   op->exactConstraints = (rom->nCCM + rom->nJIM) ? PETSC_FALSE : PETSC_TRUE;
-  op->augment = rom->augment; /* -rom_contact_augment */
+  op->state->augment   = rom->augment; /* -rom_contact_augment */
   PetscCall(PetscStrncpy(op->prefix, "rom_", sizeof(op->prefix)));
-  op->M       = rom->Mr;
-  op->C       = rom->Cr;
-  op->K       = rom->Kr;
-  op->load    = rom->loadr;
-  op->preload = rom->preloadr;
-  PetscCall(PetscObjectReference((PetscObject)op->M));
-  PetscCall(PetscObjectReference((PetscObject)op->C));
-  PetscCall(PetscObjectReference((PetscObject)op->K));
-  PetscCall(PetscObjectReference((PetscObject)op->load));
-  PetscCall(PetscObjectReference((PetscObject)op->preload));
-  op->contact              = rom->contact;
-  op->ctx                  = rom;
-  op->contactDisplacements = ROMContactDisplacements;
-  op->contactForces        = ROMContactForces;
-  op->contactStiffness     = ROMContactStiffness;
-  op->probe                = ROMProbe;
-  /* the ROM's own penalties and activation band, restored when the operator goes */
-  PetscCall(BoltContactSetScalePenalties(rom->contact, rom->penaltyScale, rom->bandScale, rom->epsSaved));
-  /* K_cr starts empty; every element is due for an update (marked with the penalties) */
+  PetscCall(BoltOperatorSetSystem(op, rom->Mr, rom->Cr, rom->Kr, rom->loadr, rom->preloadr));
+  op->ctx                      = rom;
+  op->ops.contactDisplacements = ROMContactDisplacements;
+  op->ops.contactForces        = ROMContactForces;
+  op->ops.contactStiffness     = ROMContactStiffness;
+  op->ops.probe                = ROMProbe;
+  op->ops.vectorsSave          = ROMVectorsSave;
+  op->ops.vectorsLoad          = ROMVectorsLoad;
+  op->ops.stateSave            = ROMStateSave;
+  op->ops.stateLoad            = ROMStateLoad;
+  op->ops.view                 = ROMView;
+  PetscCall(BoltContactStateSetPenaltyScale(op->state, rom->penaltyScale, rom->bandScale));
+/* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
   PetscCall(PetscFree(rom->Ke));
@@ -210,32 +279,14 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltROMOperatorDestroy(BoltOperator **opp)
-{
-  BoltOperator *op = *opp;
-
-  PetscFunctionBeginUser;
-  if (!op) PetscFunctionReturn(0);
-  {
-    BoltROM *rom = (BoltROM *)op->ctx;
-    PetscCall(BoltContactSetRestorePenalties(rom->contact, rom->epsSaved));
-  }
-  PetscCall(MatDestroy(&op->M));
-  PetscCall(MatDestroy(&op->C));
-  PetscCall(MatDestroy(&op->K));
-  PetscCall(VecDestroy(&op->load));
-  PetscCall(VecDestroy(&op->preload));
-  PetscCall(PetscFree(*opp));
-  PetscFunctionReturn(0);
-}
-
 /* Start the reduced dual loop from the FOM's preloaded state: its multipliers (scaled to this
    preload: with a fixed active set the static contact problem is linear in it) and its active
    set. They stay frozen (penalty law), so the preload vector is used as built, uncalibrated.
-   Call after BoltROMOperatorCreate, which sets the ROM's penalties. */
+   nm runs the ROM's operator, whose state has the ROM's penalties. */
 PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal preloadForce)
 {
-  BoltContactSet *c = rom->contact;
+  BoltContactSet   *c = rom->contact;
+  BoltContactState *s = nm->op->state;
 
   PetscFunctionBeginUser;
   if (!rom->preloadState) PetscFunctionReturn(0);
@@ -248,22 +299,22 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
       PetscInt  gp = 4 * e + q;
       PetscReal lam[3], g[3];
       if (!rom->active0[gp]) { /* open in the preload: no traction, and none frozen here */
-        c->lambda[3 * gp] = c->lambda[3 * gp + 1] = c->lambda[3 * gp + 2] = 0;
+        s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
         continue;
       }
       for (PetscInt k = 0; k < 3; k++) {
         lam[k] = rom->lambda0[3 * gp + k] * preloadForce;
         g[k]   = -(1 - 1 / rom->penaltyScale) * rom->gap0[3 * gp + k] * preloadForce;
       }
-      BoltContactTrialTraction(lam, g, &c->gpNormal[3 * gp], c->epsN[pair], c->epsT[pair], &c->lambda[3 * gp]);
+      s->law.traction(lam, g, &c->gpNormal[3 * gp], s->epsN[pair], s->epsT[pair], &s->lambda[3 * gp]);
     }
   }
-  PetscCall(BoltContactSetSetActive(c, rom->active0));
+  PetscCall(BoltContactStateSetActive(s, rom->active0));
   nm->calibratePreload = PETSC_FALSE;
   /* the static state is the FOM's by construction: its active set is not judged again there
      (under the ROM's stiffer penalty, points at the rim whose traction is within the band of
      zero would open on gap differences of a fraction of a nanometre) */
-  nm->keepStaticActiveSet = PETSC_TRUE;
+  nm->dual->keepActiveSet = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -278,10 +329,11 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PC        pc;
   PetscReal s0 = rom->s0, num[2] = {0, 0}, den[2] = {0, 0}, pf, pr;
   Vec       ucFull;
+  BoltContactState *sFull;
 
   PetscFunctionBeginUser;
   /* ROM first: its contact stiffness takes the (all active, all dirty) state */
-  PetscCall(op->contactStiffness(op, &Kcr));
+  PetscCall(op->ops.contactStiffness(op, &Kcr));
   PetscCall(MatDuplicate(rom->Kr, MAT_COPY_VALUES, &Ar));
   PetscCall(MatAXPY(Ar, s0, rom->Cr, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(Ar, s0 * s0, rom->Mr, SAME_NONZERO_PATTERN));
@@ -293,9 +345,10 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(KSPGetPC(kspr, &pc));
   PetscCall(PCSetType(pc, PCLU));
   PetscCall(KSPSolve(kspr, rom->loadr, qr));
-  /* FOM */
-  for (PetscInt e = 0; e < c->nelem; e++) c->dirty[e] = PETSC_TRUE;
-  PetscCall(BoltContactSetStiffness(c, &Kc));
+  /* FOM, with the ROM's penalties: a state of its own, every point active */
+  PetscCall(BoltContactStateCreate(c, &sFull));
+  PetscCall(BoltContactStateSetPenaltyScale(sFull, rom->penaltyScale, rom->bandScale));
+  PetscCall(BoltContactStateStiffness(sFull, &Kc));
   PetscCall(BoltAssemblerDamping(asmb, &C));
   PetscCall(MatDuplicate(asmb->K, MAT_COPY_VALUES, &A));
   PetscCall(MatAXPY(A, s0, C, SAME_NONZERO_PATTERN));
@@ -314,7 +367,7 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(BoltContactSetScatter(c, q));
   PetscCall(VecDuplicate(c->uc, &ucFull));
   PetscCall(VecCopy(c->uc, ucFull));
-  PetscCall(op->contactDisplacements(op, qr));
+  PetscCall(op->ops.contactDisplacements(op, qr));
   {
     const PetscScalar *a, *b;
     PetscCall(VecGetArrayRead(ucFull, &a));
@@ -329,7 +382,7 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, num, 1, MPIU_REAL, MPI_SUM, rom->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, den, 1, MPIU_REAL, MPI_SUM, rom->comm));
   PetscCall(BoltLoadSetProbe(loads, q, &pf));
-  PetscCall(op->probe(op, qr, &pr));
+  PetscCall(op->ops.probe(op, qr, &pr));
   *err = PetscMax(PetscSqrtReal(num[0] / den[0]), PetscAbsReal(pr - pf) / PetscAbsReal(pf));
   PetscCall(PetscPrintf(rom->comm, "ROM check at s0 = %g rad/s, tied joint: relative error %.3e at the contact DOFs, %.3e at the probe\n", (double)s0, (double)PetscSqrtReal(num[0] / den[0]), (double)(PetscAbsReal(pr - pf) / PetscAbsReal(pf))));
   PetscCall(VecDestroy(&ucFull));
@@ -340,5 +393,6 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(MatDestroy(&A));
   PetscCall(MatDestroy(&Ar));
   PetscCall(MatDestroy(&C));
+  PetscCall(BoltContactStateDestroy(&sFull));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,379 @@
+/* The contact state of one model: its law and penalties, and the multipliers, gaps and active
+   sets at the Gauss points, with the element matrices and K_c of the active set. The full and
+   the reduced model each own one over the shared geometry (BoltContactSet), so neither changes
+   the other's penalties or multipliers. */
+#include "boltrom.h"
+
+/* A state with the geometry's default law and penalties, every point active, no multipliers. */
+PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
+{
+  BoltContactState *s;
+  const PetscInt    ne = c->nelem;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&s));
+  s->set = c;
+  PetscCall(PetscStrncpy(s->lawType, c->lawType, sizeof(s->lawType)));
+  PetscCall(BoltContactLawSetType(c->mesh->comm, s->lawType, &s->law));
+  s->augment       = c->augment;
+  s->activationGap = c->activationGap;
+  s->openTest      = c->openTest;
+  for (PetscInt p = 0; p < c->npairs; p++) {
+    s->epsN[p]         = c->epsN[p];
+    s->epsT[p]         = c->epsT[p];
+    s->bandTraction[p] = c->bandTraction[p];
+  }
+  PetscCall(PetscCalloc2(12 * ne + 1, &s->lambda, 12 * ne + 1, &s->gap));
+  PetscCall(PetscMalloc3(4 * ne + 1, &s->active, 4 * ne + 1, &s->activeOld, 4 * ne + 1, &s->activeOlder));
+  PetscCall(PetscMalloc1(ne + 1, &s->dirty));
+  PetscCall(BoltContactStateReset(s));
+  *sp = s;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactStateDestroy(BoltContactState **sp)
+{
+  BoltContactState *s = *sp;
+
+  PetscFunctionBeginUser;
+  if (!s) PetscFunctionReturn(0);
+  PetscCall(PetscFree2(s->lambda, s->gap));
+  PetscCall(PetscFree3(s->active, s->activeOld, s->activeOlder));
+  PetscCall(PetscFree(s->dirty));
+  PetscCall(PetscFree(s->Ke));
+  PetscCall(MatDestroy(&s->Kc));
+  PetscCall(PetscFree(*sp));
+  PetscFunctionReturn(0);
+}
+
+/* This model's penalties: scale times the geometry's defaults, and its opening band (the
+   tension at which a closed point opens) band times the default; every element is due for a
+   stiffness update. */
+PetscErrorCode BoltContactStateSetPenaltyScale(BoltContactState *s, PetscReal scale, PetscReal band)
+{
+  BoltContactSet *c = s->set;
+
+  PetscFunctionBeginUser;
+  for (PetscInt p = 0; p < c->npairs; p++) {
+    s->epsN[p]         = c->epsN[p] * scale;
+    s->epsT[p]         = c->epsT[p] * scale;
+    s->bandTraction[p] = c->bandTraction[p] * band;
+  }
+  for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* nactive from the active flags (after they were set from outside, e.g. a checkpoint). */
+PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
+{
+  PetscInt nact = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < 4 * s->set->nelem; i++) nact += s->active[i] ? 1 : 0;
+  PetscCall(MPIU_Allreduce(&nact, &s->nactive, 1, MPIU_INT, MPI_SUM, s->set->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Element e's state as BOLT_CONTACT_PACK values (checkpoints): multipliers (12), gaps (12) and
+   the active flags of the last three outer iterations (4 each). */
+void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
+{
+  PetscInt k = 0;
+
+  for (PetscInt i = 0; i < 12; i++) buf[k++] = s->lambda[12 * e + i];
+  for (PetscInt i = 0; i < 12; i++) buf[k++] = s->gap[12 * e + i];
+  for (PetscInt i = 0; i < 4; i++) buf[k++] = s->active[4 * e + i];
+  for (PetscInt i = 0; i < 4; i++) buf[k++] = s->activeOld[4 * e + i];
+  for (PetscInt i = 0; i < 4; i++) buf[k++] = s->activeOlder[4 * e + i];
+}
+
+/* The inverse of BoltContactStatePack; the element is due for a stiffness update. */
+void BoltContactStateUnpack(BoltContactState *s, PetscInt e, const PetscReal buf[])
+{
+  for (PetscInt i = 0; i < 12; i++) s->lambda[12 * e + i] = buf[i];
+  for (PetscInt i = 0; i < 12; i++) s->gap[12 * e + i] = buf[12 + i];
+  for (PetscInt i = 0; i < 4; i++) s->active[4 * e + i] = buf[24 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt i = 0; i < 4; i++) s->activeOld[4 * e + i] = buf[28 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt i = 0; i < 4; i++) s->activeOlder[4 * e + i] = buf[32 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
+  s->dirty[e]    = PETSC_TRUE;
+  s->KcAssembled = PETSC_FALSE;
+}
+
+PetscErrorCode BoltContactStateReset(BoltContactState *s)
+{
+  BoltContactSet *c = s->set;
+
+  PetscFunctionBeginUser;
+  for (PetscInt g = 0; g < 4 * c->nelem; g++) s->active[g] = s->activeOld[g] = s->activeOlder[g] = PETSC_TRUE;
+  for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  s->KcAssembled = PETSC_FALSE;
+  PetscCall(PetscArrayzero(s->lambda, 12 * c->nelem));
+  PetscCall(PetscArrayzero(s->gap, 12 * c->nelem));
+  s->nactive = c->ngpGlobal;
+  PetscFunctionReturn(0);
+}
+
+/* Gap vectors g = u_b - u_a at every Gauss point, from uc. */
+PetscErrorCode BoltContactStateGaps(BoltContactState *s)
+{
+  BoltContactSet *c = s->set;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactSetGapsOf(c, s->gap));
+  PetscFunctionReturn(0);
+}
+
+/* One augmentation: lambda <- trial traction at active points, 0 elsewhere. Returns the
+   relative change of the multipliers and the largest penetration (-g.n) of an active point. */
+PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange, PetscReal *maxPenetration)
+{
+  BoltContactSet *c = s->set;
+  PetscReal loc[3] = {0, 0, 0}, glob[3];
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt pair = c->elem[e].pair;
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt         gp = 4 * e + q;
+      PetscReal       *lam = &s->lambda[3 * gp], t[3] = {0, 0, 0};
+      const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
+      if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], s->epsT[pair], t);
+      for (PetscInt k = 0; k < 3; k++) {
+        loc[0] += PetscSqr(t[k] - lam[k]);
+        loc[1] += PetscSqr(t[k]);
+        lam[k] = t[k];
+      }
+      if (s->active[gp]) loc[2] = PetscMax(loc[2], -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]));
+    }
+  }
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&loc[2], &glob[2], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
+  *maxPenetration = glob[2];
+  PetscFunctionReturn(0);
+}
+
+/* New active set from the trial tractions; counts the points that changed (global) and tells
+   whether the set equals the one two outer iterations back (cycling between two sets). */
+PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchanged, PetscBool *cycling)
+{
+  BoltContactSet *c = s->set;
+  PetscInt   loc[3] = {0, 0, 0}, glob[3];
+  PetscReal *tnOpen = NULL; /* the normal traction that decides whether a closed point opens */
+
+  PetscFunctionBeginUser;
+  /* the traction of a closed point: the multipliers (converged) with augmentation, the trial
+     traction for the penalty alone; an open point has none */
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt pair = c->elem[e].pair;
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt   gp = 4 * e + q;
+      PetscReal *t  = &c->tau[3 * gp];
+      if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
+      else if (s->augment) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
+      else s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[pair], s->epsT[pair], t);
+    }
+  }
+  PetscCall(PetscMalloc1(4 * c->nelem + 1, &tnOpen));
+  if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tnOpen));
+  else
+    for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+      const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
+      tnOpen[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+    }
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt pair = c->elem[e].pair;
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt  gp = 4 * e + q;
+      PetscBool now;
+      /* A band of width activationGap (or the traction bandTraction) around zero keeps
+         points at the edge of the contact zone, whose gaps and tractions are at round-off
+         level, from chattering between the sets: a closed point opens when its traction is
+         tensile beyond the band, an open point closes when it penetrates beyond it. */
+      {
+        const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
+        const PetscReal  band = s->bandTraction[pair];
+        if (s->active[gp]) now = (s->closeOnly || tnOpen[gp] < band) ? PETSC_TRUE : PETSC_FALSE;
+        else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > s->activationGap ? PETSC_TRUE : PETSC_FALSE;
+      }
+      s->activeOlder[gp] = s->activeOld[gp];
+      s->activeOld[gp]   = s->active[gp];
+      if (now != s->active[gp]) {
+        loc[0]++;
+        s->dirty[e] = PETSC_TRUE;
+        if (!now) s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
+      }
+      s->active[gp] = now;
+      if (now) loc[1]++;
+      if (now != s->activeOlder[gp]) loc[2]++;
+    }
+  }
+  PetscCall(PetscFree(tnOpen));
+  PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
+  *nchanged  = glob[0];
+  s->nactive = glob[1];
+  /* once points only close (anti-cycling) the set grows and cannot cycle: a return to the set of
+     two iterations back is then the points opened just before closing again */
+  *cycling   = (!s->closeOnly && glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Puts a given active set in place (a stored preloaded state): the sets of the last two outer
+   iterations are taken to be the same, and every element is due for a stiffness update. */
+PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool active[])
+{
+  BoltContactSet *c = s->set;
+  PetscInt nact = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    s->active[gp] = s->activeOld[gp] = s->activeOlder[gp] = active[gp];
+    if (active[gp]) nact++;
+  }
+  for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  PetscCall(MPIU_Allreduce(&nact, &s->nactive, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* After a two-set cycle (BoltContactStateUpdateActive): the points that toggle between the sets
+   are closed, i.e. the union of the two sets. Closed is the conservative side: it lets no point
+   penetrate, at the price of a traction at the cycling points that the band would have let
+   open. Returns the number of points closed. */
+PetscErrorCode BoltContactStateCloseCycle(BoltContactState *s, PetscInt *nclosed)
+{
+  BoltContactSet *c = s->set;
+  PetscInt loc[2] = {0, 0}, glob[2];
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    if (!s->active[gp] && s->activeOld[gp]) {
+      s->active[gp]     = PETSC_TRUE;
+      s->dirty[gp / 4] = PETSC_TRUE;
+      loc[0]++;
+    }
+    if (s->active[gp]) loc[1]++;
+  }
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, c->mesh->comm));
+  *nclosed   = glob[0];
+  s->nactive = glob[1];
+  PetscFunctionReturn(0);
+}
+
+/* K_c of the active Gauss points in the global layout; only elements whose activity changed
+   are recomputed. */
+PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
+{
+  BoltContactSet *c = s->set;
+  PetscScalar    *v;
+  PetscInt        changed = 0, any;
+
+  PetscFunctionBeginUser;
+  if (!s->Kc) { /* a model that never asks for the global K_c (the ROM) holds none */
+    PetscCall(PetscMalloc1(576 * c->nelem + 1, &s->Ke));
+    PetscCall(BoltContactSetStiffnessMatrix(c, &s->Kc));
+  }
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    if (!s->dirty[e]) continue;
+    PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], &s->Ke[576 * e]));
+    s->dirty[e] = PETSC_FALSE;
+    changed++;
+  }
+  PetscCall(MPIU_Allreduce(&changed, &any, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+  *Kc = s->Kc;
+  if (!any && s->KcAssembled) PetscFunctionReturn(0); /* nothing changed since the last call */
+  s->KcAssembled = PETSC_TRUE;
+#if defined(PETSC_USE_COMPLEX)
+  SETERRQ(c->mesh->comm, PETSC_ERR_SUP, "Real scalars only");
+#else
+  v = (PetscScalar *)s->Ke;
+#endif
+  PetscCall(MatSetValuesCOO(s->Kc, v, INSERT_VALUES));
+  PetscFunctionReturn(0);
+}
+
+/* The contact traction at a Gauss point: the trial traction lambda + P g where active (equal to
+   lambda once the augmentations converge; P g alone for pure penalty), zero elsewhere. */
+static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt gp, PetscReal t[3])
+{
+  BoltContactSet *c = s->set;
+  if (!s->active[gp]) {
+    t[0] = t[1] = t[2] = 0;
+    return;
+  }
+  s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], t);
+}
+
+/* Sum over each pair of the normal contact force, int t.n dA (negative in compression). */
+PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *s, PetscReal force[])
+{
+  BoltContactSet *c = s->set;
+
+  PetscFunctionBeginUser;
+  for (PetscInt p = 0; p < c->npairs; p++) force[p] = 0;
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt q = 0; q < 4; q++) {
+      PetscInt         gp = 4 * e + q;
+      PetscReal        t[3];
+      const PetscReal *n = &c->gpNormal[3 * gp];
+      BoltContactStateTraction(s, e, gp, t);
+      force[c->elem[e].pair] += c->gpW[gp] * (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, force, (PetscMPIInt)c->npairs, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Min and max normal traction over active points, and the largest tangential traction. */
+PetscErrorCode BoltContactStateTractionStats(BoltContactState *s, PetscReal *tnMin, PetscReal *tnMax, PetscReal *ttMax)
+{
+  BoltContactSet *c = s->set;
+  PetscReal mn = PETSC_MAX_REAL, mx = -PETSC_MAX_REAL, tt = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    const PetscReal *n = &c->gpNormal[3 * gp];
+    PetscReal        lam[3], ln, t2 = 0;
+    if (!s->active[gp]) continue;
+    BoltContactStateTraction(s, gp / 4, gp, lam);
+    ln = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2];
+    mn = PetscMin(mn, ln);
+    mx = PetscMax(mx, ln);
+    for (PetscInt k = 0; k < 3; k++) t2 += PetscSqr(lam[k] - ln * n[k]);
+    tt = PetscMax(tt, PetscSqrtReal(t2));
+  }
+  PetscCall(MPIU_Allreduce(&mn, tnMin, 1, MPIU_REAL, MPI_MIN, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&mx, tnMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&tt, ttMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Area-weighted inner product over the active Gauss points: sum w x.y (global). */
+PetscErrorCode BoltContactStateDot(BoltContactState *s, const PetscReal x[], const PetscReal y[], PetscReal *dot)
+{
+  BoltContactSet *c = s->set;
+  PetscReal loc = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
+    if (s->active[gp]) loc += c->gpW[gp] * (x[3 * gp] * y[3 * gp] + x[3 * gp + 1] * y[3 * gp + 1] + x[3 * gp + 2] * y[3 * gp + 2]);
+  PetscCall(MPIU_Allreduce(&loc, dot, 1, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Largest penetration -g.n over the active points (global); zeroes g at inactive points. */
+PetscErrorCode BoltContactStatePenetration(BoltContactState *s, PetscReal g[], PetscReal *pen)
+{
+  BoltContactSet *c = s->set;
+  PetscReal loc = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    const PetscReal *n = &c->gpNormal[3 * gp];
+    if (!s->active[gp]) {
+      g[3 * gp] = g[3 * gp + 1] = g[3 * gp + 2] = 0;
+      continue;
+    }
+    loc = PetscMax(loc, -(g[3 * gp] * n[0] + g[3 * gp + 1] * n[1] + g[3 * gp + 2] * n[2]));
+  }
+  PetscCall(MPIU_Allreduce(&loc, pen, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
