@@ -17,7 +17,7 @@ SLEPC_VARS := $(wildcard $(SLEPC_DIR)/lib/slepc/conf/slepc_variables)
 ifeq ($(SLEPC_VARS),)
 # Nothing installed yet: install the stack, then run the same goal again.
 .DEFAULT_GOAL := all
-all bin/boltrom run test bench mesh tests-c verify stress paper:
+all bin/boltrom run test bench mesh tests-c verify stress paper options:
 	bash scripts/install-deps
 	$(MAKE) $@
 else
@@ -100,8 +100,12 @@ verify: deps all
 test: deps all
 	$(PYTHON) -m pytest -q tests
 
+# docs/options.md: every option with its default and help, from bin/boltrom -help.
+options: deps all
+	$(PYTHON) scripts/options-doc
+
 clean:
 	rm -rf build bin
 
-.PHONY: all deps run test mesh clean tests-c verify bench stress paper
+.PHONY: all deps run test mesh clean tests-c verify bench stress paper options
 endif

@@ -18,7 +18,7 @@ def main(png, *files):
                 if model in f:
                     ax.plot(f[model]["time"][...] * 1e3, f[model]["probe"][...] * 1e3, "-" if model == "fom" else "--",
                             label=f"{model.upper()} ({path.split('/')[-1]})")
-            if "fom" in f and "rom" in f:  # the figures of DESIGN section 4, as in the summary
+            if "fom" in f and "rom" in f:  # e_L2 and e_mean as in the summary (docs/reduction.md, "Errors and speedup")
                 eL2, emean = errors(f["rom"]["probe"][...], f["fom"]["probe"][...])
                 ax.set_title(f"ROM against FOM: e_L2 {eL2:.2%}, mean relative error {emean:.2%}")
     ax.set_xlabel("time [ms]")

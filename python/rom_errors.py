@@ -1,6 +1,6 @@
-"""The errors of a ROM probe history against the FOM's (DESIGN section 4), as boltrom's summary
-computes them: e_L2 = ||u - ref|| / ||ref|| over all steps, and the mean pointwise relative error
-over the steps where |ref| exceeds 1 % of its maximum."""
+"""The errors of a ROM probe history against the FOM's, as boltrom's summary computes them
+(docs/reduction.md, "Errors and speedup"): e_L2 = ||u - ref|| / ||ref|| over all steps, and the
+mean pointwise relative error over the steps where |ref| exceeds 1 % of its maximum."""
 import numpy as np
 
 

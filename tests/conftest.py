@@ -1,4 +1,7 @@
-"""Shared fixtures: the built binaries, meshes made once per session, and a runner."""
+"""Shared fixtures: the built binaries, meshes made once per test run, and a runner.
+
+The mesh fixtures have package scope: tests/ has no __init__.py, so pytest keeps one instance
+for the whole run (the meshes are made once, the first time a test asks for them)."""
 import json
 import os
 import subprocess
@@ -42,23 +45,23 @@ def make_mesh(kind, path, level=1.0, extra=()):
     return path, json.loads(json_path.read_text())
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def meshdir(tmp_path_factory):
     return tmp_path_factory.mktemp("meshes")
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def joint_small(meshdir):
     """A coarse joint (level 0.5): every feature of the reference joint, few DOFs."""
     return make_mesh("joint", meshdir / "joint-L0.5.msh", 0.5)
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def joint_paper(meshdir):
     """The paper-level joint (level 1)."""
     return make_mesh("joint", meshdir / "joint-L1.msh", 1)
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def block_mesh(meshdir):
     return make_mesh("block", meshdir / "block.msh", 1)

@@ -55,10 +55,11 @@ def test_contact_as_low_rank_input_is_exact_at_s0(joint_small, tmp_path, order):
 def test_rom_matches_fom_without_interface_reduction(joint_small, tmp_path, order, shapes, bound):
     """The paper's ROM without interface reduction (its Table 3: 7.8e-4). At order 1 the static
     shapes (the closed joint's static responses to the load and to the mass times them) carry its
-    inertia; without them order 1 is far off (session 14: 0.76 at the paper level, 2.3e-4 with them)."""
+    inertia; without them order 1 is far off (e_L2 of order 1 at the paper level), which the last case
+    asserts (docs/reduction.md, static shapes)."""
     mesh, _ = joint_small
     # a wide activation band keeps the active set fixed in both models, so that the comparison
-    # measures the reduction and not the edge-of-contact decisions (README: both are reported)
+    # measures the reduction and not the edge-of-contact decisions (docs/reduction.md: both are reported)
     s = run_summary(["-mesh", mesh, "-fom"] + ROM + ["-rom_n_ccm", "0", "-rom_n_jim", "0", "-krylov_order", order,
                      "-rom_static_shapes", shapes, "-contact_activation_gap", "1e-5", "-ts_dt", "1e-4", "-ts_end", "0.01",
                      "-output", "false"], tmp_path)
@@ -85,7 +86,7 @@ def test_rom_with_interface_reduction(joint_small, tmp_path):
     # fewer reduced DOFs than contact constraints: the reduced dual loop uses the penalty law
     assert r["contact_law"] == "penalty" and r["failures"] == 0
     assert r["preload_state"] == 1 and r["closed_krylov"] == 3 and r["contact_penalty_scale"] == 500 and r["contact_band_scale"] == 1
-    assert s["errors"]["load_point"]["e_L2"] < 3e-4  # measured 6.0e-5 in session 13 (4.4e-4 before session 12; README)
+    assert s["errors"]["load_point"]["e_L2"] < 3e-4  # offline static solves at the FOM's own penalty give about 4e-4 here (docs/reduction.md)
 
 
 def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
@@ -101,11 +102,11 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
         fom, rom = f["/fom/probe"][...], f["/rom/probe"][...]
     scale = np.abs(fom).max()
     print("preloaded probe: FOM", fom[0], "ROM", rom[0], "; e_L2", s["errors"]["load_point"]["e_L2"])
-    # the penalty law alone started 7 times further down (README). The offline phase takes the FOM
+    # the penalty law alone started 7 times further down (docs/reduction.md). The offline phase takes the FOM
     # run's own preloaded state, so the start is the FOM's to the round-off of the reduced system
     # under its near-hard penalty (measured 3e-10 of the scale; 2e-6 when it was solved again)
     assert abs(rom[0] - fom[0]) <= 1e-7 * scale
-    assert s["errors"]["load_point"]["e_L2"] < 1.5e-3  # measured 3.3e-4 in session 13 (2.2e-3 in session 9, 2.7e-3 before; paper: 3.5e-3 at its level)
+    assert s["errors"]["load_point"]["e_L2"] < 1.5e-3  # well inside the paper's 3.5e-3 at its level; current figure in docs/results.md
     from_file = {}
     for ranks in (1, 3):
         d = tmp_path / f"np{ranks}"
@@ -120,7 +121,7 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
         assert np.abs(from_file[ranks] - rom).max() <= 1e-9 * scale, ranks
     # The reduced sums over ranks are exact (BoltExactSum), so no round-off is left for the
     # near-hard penalty (condition number ~1e9) to lift: one file gives the same bits on 1 and 3
-    # ranks. Before, the histories were 3e-8..7e-8 of the scale apart (README)
+    # ranks. With ordinary floating-point sums they were 3e-8..7e-8 of the scale apart (docs/reduction.md)
     assert np.array_equal(from_file[1], from_file[3])
     # The frozen multipliers carry the offset -(s - 1) P g0 only where the preload closed the
     # joint: at the 8 points it left open, the same offset was a spurious force that grew with the
@@ -142,7 +143,7 @@ def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path, shapes, bound)
     reduced dual loop agree to 1e-8. Its static shapes lie within 1.5e-8 of the Krylov vectors'
     span (the remainders are printed), so orthogonalising them amplifies the round-off in which
     the two builds differ (and PT-Scotch's 2-rank partition is not the same from run to run):
-    four pairs of builds differed by 3.7e-7 to 3.5e-5 and a fifth by more than 2e-5 (session 14),
+    pairs of builds differ by up to a few times 1e-5,
     so the bound here only catches a real disagreement. From one ROM file the histories agree to 1e-8
     (test_rom_file_built_on_2_ranks_serves_1_rank)."""
     mesh, _ = joint_small
@@ -226,9 +227,8 @@ def test_rom_under_a_small_load(joint_small, tmp_path):
     """0.1 N at the tip, 2e5 times below the preload. The offline load response and closed-contact
     Krylov vectors are static solves from the preloaded state, converged to a tolerance relative to
     the preload's multipliers; forced at 0.1 N their shapes were mostly that residual, and the ROM
-    was 1.4 % off (README, fix of session 9). They are now forced at 1e-3 of the preload's norm
-    at least (the load 284 times here), and the ROM is within 1 % (measured 0.37 % in session 9,
-    0.12 % in session 13)."""
+    was 1.4 % off. They are forced at 1e-3 of the preload's norm at least (the load 284 times
+    here), and the ROM must be within 1 % (docs/reduction.md, preloaded state)."""
     from conftest import run_boltrom
     mesh, _ = joint_small
     args = ["-mesh", mesh] + PAPER_ROM + ["-fom", "-load_force", "0.1", "-output_dir", tmp_path / "a", "-summary", tmp_path / "a.json"]
@@ -245,8 +245,8 @@ def test_offline_static_solves_under_a_stiff_penalty(joint_small, tmp_path):
     """The offline phase's static solves from the preloaded state (load response, closed-contact
     Krylov vectors) end with the active gaps closed, whatever the penalty; a stiffer one only
     conditions their multiplier CG better. At level 1.8 the first closed-contact vector took
-    1425 inner iterations at the FOM's penalty, 55 at 1e4 times it (the default since session
-    12; README). Here: at 1e4 and 1e5 x the ROM's histories agree to 1e-3, and at 1e4 x the
+    1425 inner iterations at the FOM's penalty, 55 at 1e4 times it (the default;
+    docs/reduction.md). Here: at 1e4 and 1e5 x the ROM's histories agree to 1e-3, and at 1e4 x the
     solves need at most a third of the iterations of 1 x (measured 12 against 86) and the ROM
     is no further from the FOM (measured e_L2 0.034 % against 0.210 %)."""
     from conftest import run_boltrom
@@ -272,7 +272,7 @@ def test_closed_contact_vectors_keep_the_preloaded_active_set(joint_small, tmp_p
     mass times the previous vector) is spread over the whole volume, and when it was free to
     change the active set it opened 280 rim points at level 1.8 and 6000 at level 3.2; the
     basis of that opened joint was 0.67 % off there in paper-step, 0.32 % with the set kept
-    (README, session 13). Here: with the set kept every vector ends with the preloaded count of
+    (docs/reduction.md). Here: with the set kept every vector ends with the preloaded count of
     closed points in one outer iteration, and the ROM is no further from the FOM than with the
     set free (measured at this level: 696 points kept, 692 with the set free; e_L2 0.03393 %
     against 0.03395 %)."""
@@ -296,7 +296,7 @@ def test_closed_contact_vectors_keep_the_preloaded_active_set(joint_small, tmp_p
 
 def test_rom_where_the_load_opens_the_joint(joint_small, tmp_path):
     """A 1 kN load opens the joint over most of the overlap (704 active points down to about 110).
-    Two fixes of the stress sweep (README): the offline closed-contact Krylov solves are forced at
+    Two rules found by the stress sweep (docs/reduction.md, docs/model.md): the offline closed-contact Krylov solves are forced at
     1e-3 of the preload's norm, not at the load's, which opened the joint and stopped the build;
     and the reduced dual loop's active set, which cycled here, is made to settle by letting points
     only close for the rest of a step once it cycles. Without the second the same ROM file stops."""
@@ -310,9 +310,9 @@ def test_rom_where_the_load_opens_the_joint(joint_small, tmp_path):
     force, load, preload = (float(x) for x in re.match(r"ROM: closed-contact Krylov forcing of norm (\S+) \(load (\S+), preload (\S+)\)", line).groups())
     assert load == pytest.approx(1000) and force == pytest.approx(1e-3 * preload, rel=1e-6) and force < load
     assert s["fom"]["failures"] == 0 and s["rom"]["failures"] == 0
-    assert s["rom"]["cycles"] > 0  # the anti-cycling rule was needed (README)
+    assert s["rom"]["cycles"] > 0  # the anti-cycling rule was needed (docs/model.md, dual loop)
     print("1 kN: e_L2", s["errors"]["load_point"]["e_L2"], "cycles", s["rom"]["cycles"])
-    assert s["errors"]["load_point"]["e_L2"] < 0.025  # measured 1.5 % on 1 rank, 0.6 % on 2 (session 13; 1.0-1.1 % in session 8)
+    assert s["errors"]["load_point"]["e_L2"] < 0.025  # where the load opens the joint the IR ROM is 1-2 % off, varying from build to build (docs/results.md)
     proc = run_boltrom(base + ["-fom", "false", "-contact_cycle_close", "false", "-output_dir", tmp_path / "b"], check=False)
     # it either cycles or runs out of outer iterations (it cycled with the FOM's activation band)
     assert proc.returncode != 0 and "the active set did not settle" in proc.stderr
