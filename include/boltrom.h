@@ -211,6 +211,7 @@ PetscErrorCode BoltContactStateTractionStats(BoltContactState *, PetscReal *, Pe
 PetscErrorCode BoltContactStateDot(BoltContactState *, const PetscReal[], const PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStatePenetration(BoltContactState *, PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStateCountActive(BoltContactState *);
+PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
 #define BOLT_CONTACT_PACK 36 /* values per element of BoltContactStatePack */
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);

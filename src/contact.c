@@ -36,6 +36,10 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscOptionsEnd();
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
+  {
+    BoltContactLaw law;
+    PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, &law)); /* an unknown law fails here, before any solve */
+  }
   PetscFunctionReturn(0);
 }
 

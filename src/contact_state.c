@@ -63,6 +63,18 @@ PetscErrorCode BoltContactStateSetPenaltyScale(BoltContactState *s, PetscReal sc
   PetscFunctionReturn(0);
 }
 
+/* Frees the element matrices and K_c (a finished run's); the next stiffness request rebuilds
+   them from the active set. */
+PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(s->Ke));
+  PetscCall(MatDestroy(&s->Kc));
+  s->KcAssembled = PETSC_FALSE;
+  for (PetscInt e = 0; e < s->set->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* nactive from the active flags (after they were set from outside, e.g. a checkpoint). */
 PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
 {

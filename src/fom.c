@@ -98,7 +98,7 @@ static PetscErrorCode FOMDestroy(BoltOperator *op)
   PetscFunctionReturn(0);
 }
 
-/* transient: with the damping matrix; static solves need none (at 562k DOFs it is a 1.5 GB copy
+/* transient: with the damping matrix; static solves need none (on the finest meshes it is a copy
    of the stiffness's pattern) */
 PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, PetscBool transient, BoltOperator **opp)
 {

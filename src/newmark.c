@@ -212,12 +212,13 @@ PetscErrorCode BoltNewmarkView(BoltNewmark *nm, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* After the run: frees the factorisation and the effective matrix, keeping the histories and
+/* After the run: frees the factorisation, the effective matrix and the contact matrices, keeping the histories and
    the final state (a run that is over does not need them; they are the largest part of it). */
 PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *nm)
 {
   PetscFunctionBeginUser;
   PetscCall(BoltDualReleaseSolver(nm->dual));
+  PetscCall(BoltContactStateReleaseStiffness(nm->op->state));
   PetscFunctionReturn(0);
 }
 
