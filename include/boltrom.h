@@ -434,4 +434,12 @@ PetscErrorCode BoltKeyIndexCreate(PetscInt, const PetscReal[], BoltKeyIndex *);
 PetscErrorCode BoltKeyIndexFind(BoltKeyIndex *, PetscInt, PetscInt *);
 PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *);
 
+/* ------------------------------------------------------------------ solver.c */
+/* Direct solvers (PREONLY + LU or Cholesky) of the analyses, the reduction and the time
+   integrators; prefix NULL: not configurable from the command line. */
+PetscErrorCode BoltDirectSolverSetType(KSP, PetscBool, MatSolverType);
+PetscErrorCode BoltDirectSolverCreate(MPI_Comm, const char[], Mat, PetscBool, MatSolverType, KSP *);
+PetscErrorCode BoltDirectSolverSetFromOptions(MPI_Comm, const char[], PetscBool, MatSolverType);
+PetscErrorCode BoltModalSetFromOptions(MPI_Comm, PetscInt, const char[]); /* analysis.c */
+
 #endif
