@@ -13,8 +13,10 @@
 static const char *const boltLateOptions[] = {
   "*mat_mumps_*",                                   /* MUMPS's controls, read at the factorisation */
   "*_converged_reason", "*_view", "*_view_*",       /* reports of a solve, read when it ends */
-  "log_view*", "options_left", "traceback", "help", /* PETSc's own and main()'s */
+  "log_view*", "traceback", "help",                 /* PETSc's own and main()'s */
   NULL};
+/* Read by PetscFinalize, after the final check. */
+static const char *const boltExitOptions[] = {"options_left", NULL};
 /* Read while the model is set up: the per-pair penalties (the mesh names the pairs) and the
    options of DMPlex's mesh reader. */
 static const char *const boltSetUpOptions[] = {"contact_*_penalty_factor", "dm_plex_*", NULL};
@@ -62,10 +64,11 @@ PetscErrorCode BoltOptionsCheckUnused(MPI_Comm comm, BoltOptionsStage stage)
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt i = 0; i < n; i++) {
-    PetscBool late = PETSC_FALSE, setUp = PETSC_FALSE;
+    PetscBool late = PETSC_FALSE, setUp = PETSC_FALSE, exit;
+    PetscCall(BoltGlobMatchAny(boltExitOptions, names[i], &exit));
     if (stage != BOLT_OPTIONS_FINAL) PetscCall(BoltGlobMatchAny(boltLateOptions, names[i], &late));
     if (stage == BOLT_OPTIONS_BEFORE_SETUP) PetscCall(BoltGlobMatchAny(boltSetUpOptions, names[i], &setUp));
-    if (late || setUp) continue;
+    if (exit || late || setUp) continue;
     if (nbad < 8) {
       PetscCall(PetscStrlcat(msg, nbad ? ", -" : "-", sizeof(msg)));
       PetscCall(PetscStrlcat(msg, names[i], sizeof(msg)));
