@@ -11,6 +11,7 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscFunctionBeginUser;
   PetscCall(BoltMeshCreate(r->comm, &r->mesh));
   PetscCall(BoltMeshSetFromOptions(r->mesh));
+  PetscCheck(!r->opt.checkRigid || !r->mesh->clamp, r->comm, PETSC_ERR_USER_INPUT, "-check_rigid needs the free-free model: add -clamp false");
   PetscCall(BoltAssemblerCreate(r->mesh, &r->asmb));
   PetscCall(BoltAssemblerSetFromOptions(r->asmb));
   PetscCall(BoltContactSetCreate(r->mesh, &r->contact));
