@@ -441,10 +441,13 @@ typedef struct {
   PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
 } BoltROM;
 
+#include "boltrom_krylov.h" /* BoltKrylov: the basis's options */
+
+/* The reduction's settings, read by BoltReductionSetFromOptions (reduction_object.c) */
 typedef struct {
   MPI_Comm   comm;
-  PetscInt   order, blockSize, nCCM, nJIM;
-  PetscReal  s0, deflationTol;
+  PetscInt   nCCM, nJIM;
+  BoltKrylov *krylov;       /* the Krylov basis's options (-krylov_*), owned by BoltReduction */
   char       file[PETSC_MAX_PATH_LEN];
   PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
@@ -460,7 +463,6 @@ typedef struct {
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;
 
-PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm, BoltReductionOptions *);
 PetscErrorCode BoltROMBuild(BoltReductionOptions *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltROM **);
 PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMDestroy(BoltROM **);
@@ -523,5 +525,115 @@ typedef struct {
 PetscErrorCode BoltKeyIndexCreate(PetscInt, const PetscReal[], BoltKeyIndex *);
 PetscErrorCode BoltKeyIndexFind(BoltKeyIndex *, PetscInt, PetscInt *);
 PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *);
+
+/* ------------------------------------------------------------------ solver.c */
+/* Direct solvers (PREONLY + LU or Cholesky) of the analyses, the reduction and the time
+   integrators; prefix NULL: not configurable from the command line. */
+PetscErrorCode BoltDirectSolverSetType(KSP, PetscBool, MatSolverType);
+PetscErrorCode BoltDirectSolverCreate(MPI_Comm, const char[], Mat, PetscBool, MatSolverType, KSP *);
+PetscErrorCode BoltDirectSolverSetFromOptions(MPI_Comm, const char[], PetscBool, MatSolverType);
+PetscErrorCode BoltModalSetFromOptions(MPI_Comm, PetscInt, const char[]); /* analysis.c */
+
+/* ------------------------------------------------------------------ reduction_object.c */
+/* The model reduction as configured: its options (-rom_*), the Krylov basis's (-krylov_*) and
+   those of its solvers, read once at the start whatever -rom says. Build runs BoltROMBuild. */
+typedef struct {
+  MPI_Comm             comm;
+  BoltReductionOptions opt;  /* with the Krylov options, opt.krylov */
+  PetscBool            view; /* -rom_view */
+} BoltReduction;
+
+PetscErrorCode BoltReductionCreate(MPI_Comm, BoltReduction **);
+PetscErrorCode BoltReductionSetFromOptions(BoltReduction *);
+PetscErrorCode BoltReductionView(BoltReduction *, PetscViewer);
+PetscErrorCode BoltReductionBuild(BoltReduction *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, const BoltPreloadState *, BoltROM **);
+PetscErrorCode BoltReductionDestroy(BoltReduction **);
+
+/* ------------------------------------------------------------------ run.c */
+/* What a run does and where it writes (main's options). */
+typedef struct {
+  char      outputDir[PETSC_MAX_PATH_LEN];
+  char      outputName[BOLTROM_NAME_LEN];
+  char      summary[PETSC_MAX_PATH_LEN];
+  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom, rom, romCheckS0;
+  char      exportDir[PETSC_MAX_PATH_LEN]; /* tied K and M, full and reduced, for petsc4py */
+  PetscInt  verifyField;                   /* 0 smooth, 1 linear */
+  PetscInt  nev;
+} BoltRunOptions;
+
+PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm, BoltRunOptions *);
+
+/* ------------------------------------------------------------------ preflight.c */
+/* Checks before any computation: options nobody reads, folders that cannot be written. */
+typedef enum { BOLT_OPTIONS_BEFORE_SETUP, BOLT_OPTIONS_BEFORE_SOLVE, BOLT_OPTIONS_FINAL } BoltOptionsStage;
+PetscErrorCode BoltOptionsCheckUnused(MPI_Comm, BoltOptionsStage);
+PetscErrorCode BoltCheckWritableDir(MPI_Comm, const char[], const char[]);
+PetscErrorCode BoltCheckWritableParent(MPI_Comm, const char[], const char[]);
+PetscErrorCode BoltPreflightSetFromOptions(MPI_Comm, const BoltRunOptions *, char[]);
+PetscErrorCode BoltPreflightCheck(MPI_Comm, const BoltRunOptions *, const BoltReduction *, const char[]);
+
+/* ------------------------------------------------------------------ verify.c */
+/* Checks of the assembled model (-verify_fields, -check_rigid) and the export of the tied and
+   reduced matrices (-export_matrices) for petsc4py. */
+PetscErrorCode BoltExportMatrix(Mat, const char[], const char[]);
+PetscErrorCode BoltExportTied(const char[], Mat, Mat);
+PetscErrorCode BoltExportReduced(const char[], BoltROM *, BoltOperator *);
+PetscErrorCode BoltVerifyFields(BoltMesh *, Mat, Mat, Vec, PetscInt, Vec *, Vec *, Vec *);
+PetscErrorCode BoltCheckRigid(BoltAssembler *, Vec, PetscReal[]);
+
+/* ------------------------------------------------------------------ summary.c */
+/* A run's results: its objects and the figures of its stages, written as the JSON summary
+   (-summary) and the HDF5/XDMF fields. A stage that did not run leaves its pointer NULL or its
+   flag false, and has no block. */
+typedef struct {
+  BoltMesh       *mesh;
+  BoltAssembler  *asmb;
+  BoltContactSet *contact;
+  BoltLoadSet    *loads;
+  PetscReal       tSetUp;
+  PetscBool       staticSolve;                   /* "static": the tied joint under the load */
+  Vec             u;                             /* its displacement */
+  PetscReal       probe, tStatic;
+  Vec             x, Kx, Mx;                     /* -verify_fields, or NULL */
+  PetscInt        nev, nconv;                    /* "modal" if nev > 0 */
+  PetscReal       freq[100], tModal;
+  PetscBool       checkRigid;                    /* "rigid_residual_per_part" */
+  PetscReal       rigid[BOLTROM_MAX_PARTS];
+  BoltNewmark    *fomRun;                        /* "preload" and "fom": the FOM's run */
+  PetscReal       preloadForce[BOLTROM_MAX_PAIRS]; /* the FOM's preloaded state, before its transient */
+  PetscReal       tractionStats[3], preloadPenetration, preloadChange;
+  PetscInt        preloadActive;
+  BoltROM        *rom;                           /* "rom": the reduced model and its run */
+  BoltNewmark    *romRun;
+  PetscBool       romCheckS0;
+  PetscReal       romCheckError;
+  PetscReal       errL2, errMean;                /* "speedup" and "errors": with both runs */
+} BoltSummary;
+
+PetscErrorCode BoltSummaryWrite(MPI_Comm, const char[], const BoltSummary *);
+PetscErrorCode BoltSummaryWriteFields(const BoltSummary *, const char[], const char[]);
+
+/* ------------------------------------------------------------------ run.c (stages) */
+/* A run's objects, made and configured by main; sum collects what the stages report. */
+typedef struct {
+  MPI_Comm          comm;
+  BoltRunOptions    opt;
+  BoltMesh         *mesh;
+  BoltAssembler    *asmb;
+  BoltContactSet   *contact;
+  BoltLoadSet      *loads;
+  BoltReduction    *red;
+  Vec               u;
+  Mat               Ktied;
+  BoltOperator     *fomOp, *romOp;
+  BoltNewmark      *fomNm, *romNm;
+  BoltPreloadState *fomPreload;
+  BoltROM          *rom;
+  BoltSummary       sum;
+} BoltRun;
+
+PetscErrorCode BoltRunTied(BoltRun *);
+PetscErrorCode BoltRunFOM(BoltRun *);
+PetscErrorCode BoltRunROM(BoltRun *);
 
 #endif

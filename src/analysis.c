@@ -5,21 +5,13 @@
 PetscErrorCode BoltStaticSolve(Mat K, Vec f, Vec u, const char prefix[])
 {
   KSP                ksp;
-  PC                 pc;
   KSPConvergedReason reason;
   PetscReal          norm;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(boltLog.staticSolve, 0, 0, 0, 0));
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)K), &ksp));
-  PetscCall(KSPSetOptionsPrefix(ksp, prefix));
-  PetscCall(KSPSetOperators(ksp, K, K));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(KSPSetErrorIfNotConverged(ksp, PETSC_FALSE));
-  PetscCall(KSPSetFromOptions(ksp));
+  /* a failed solve does not raise an error (KSP's default): the check below names its cause */
+  PetscCall(BoltDirectSolverCreate(PetscObjectComm((PetscObject)K), prefix, K, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
   PetscCall(PetscLogEventBegin(boltLog.factorization, 0, 0, 0, 0));
   PetscCall(KSPSetUp(ksp));
   PetscCall(PetscLogEventEnd(boltLog.factorization, 0, 0, 0, 0));
@@ -32,19 +24,14 @@ PetscErrorCode BoltStaticSolve(Mat K, Vec f, Vec u, const char prefix[])
   PetscFunctionReturn(0);
 }
 
-/* The nev lowest eigenfrequencies [Hz] of K x = w^2 M x, by shift-and-invert about 0. */
-PetscErrorCode BoltModalSolve(Mat K, Mat M, PetscInt nev, const char prefix[], PetscInt *nconv, PetscReal freq[])
+/* The eigensolver of the nev lowest eigenpairs, by shift-and-invert about 0, then its options.
+   Operators (K, M) are set before, if at all. */
+static PetscErrorCode ModalSetUp(EPS eps, PetscInt nev)
 {
-  EPS eps;
   ST  st;
   KSP ksp;
-  PC  pc;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.modalSolve, 0, 0, 0, 0));
-  PetscCall(EPSCreate(PetscObjectComm((PetscObject)K), &eps));
-  PetscCall(EPSSetOptionsPrefix(eps, prefix));
-  PetscCall(EPSSetOperators(eps, K, M));
   PetscCall(EPSSetProblemType(eps, EPS_GHEP));
   PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
@@ -53,11 +40,35 @@ PetscErrorCode BoltModalSolve(Mat K, Mat M, PetscInt nev, const char prefix[], P
   PetscCall(EPSGetST(eps, &st));
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(BoltDirectSolverSetType(ksp, PETSC_FALSE, MATSOLVERMUMPS));
   PetscCall(EPSSetFromOptions(eps));
+  PetscFunctionReturn(0);
+}
+
+/* Reads (and so checks) the options of the modal solve before the model exists. */
+PetscErrorCode BoltModalSetFromOptions(MPI_Comm comm, PetscInt nev, const char prefix[])
+{
+  EPS eps;
+
+  PetscFunctionBeginUser;
+  PetscCall(EPSCreate(comm, &eps));
+  PetscCall(EPSSetOptionsPrefix(eps, prefix));
+  PetscCall(ModalSetUp(eps, PetscMax(nev, 1)));
+  PetscCall(EPSDestroy(&eps));
+  PetscFunctionReturn(0);
+}
+
+/* The nev lowest eigenfrequencies [Hz] of K x = w^2 M x, by shift-and-invert about 0. */
+PetscErrorCode BoltModalSolve(Mat K, Mat M, PetscInt nev, const char prefix[], PetscInt *nconv, PetscReal freq[])
+{
+  EPS eps;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.modalSolve, 0, 0, 0, 0));
+  PetscCall(EPSCreate(PetscObjectComm((PetscObject)K), &eps));
+  PetscCall(EPSSetOptionsPrefix(eps, prefix));
+  PetscCall(EPSSetOperators(eps, K, M));
+  PetscCall(ModalSetUp(eps, nev));
   PetscCall(EPSSolve(eps));
   PetscCall(EPSGetConverged(eps, nconv));
   PetscCheck(*nconv >= nev, PetscObjectComm((PetscObject)K), PETSC_ERR_NOT_CONVERGED, "Eigensolver found %" PetscInt_FMT " of %" PetscInt_FMT " eigenpairs: raise -%seps_max_it or check the model", *nconv, nev, prefix ? prefix : "");

@@ -25,7 +25,7 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscFunctionBeginUser;
   PetscCall(BoltContactLawRegisterAll());
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
-  PetscCall(PetscOptionsFList("-contact_law", "Contact law at a point (stick: augmented Lagrangian, stick with elastic slip)", NULL, BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
+  PetscCall(PetscOptionsFList("-contact_law", "Contact law at a point (stick: augmented Lagrangian, stick with elastic slip)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m]", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
   {

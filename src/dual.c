@@ -267,7 +267,7 @@ PetscErrorCode BoltDualSetFromOptions(BoltDual *d)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Contact loop", "boltrom");
-  PetscCall(PetscOptionsFList("-contact_inner", "Inner loop: uzawa (augmentations, as the paper) or cg (conjugate gradients on the multipliers, same fixed point, fewer solves)", NULL, BoltDualInnerList, d->innerType, d->innerType, sizeof(d->innerType), NULL));
+  PetscCall(PetscOptionsFList("-contact_inner", "Inner loop: uzawa (augmentations, as the paper) or cg (conjugate gradients on the multipliers, same fixed point, fewer solves)", "BoltDual", BoltDualInnerList, d->innerType, d->innerType, sizeof(d->innerType), NULL));
   PetscCall(PetscOptionsInt("-contact_max_outer", "Outer (active set) iterations per step", NULL, d->maxOuter, &d->maxOuter, NULL));
   PetscCall(PetscOptionsInt("-contact_max_inner", "Inner (augmentation) iterations per outer iteration", NULL, d->maxInner, &d->maxInner, NULL));
   PetscCall(PetscOptionsReal("-contact_tol_lambda", "Tolerance on the relative change of the multipliers", NULL, d->tolLambda, &d->tolLambda, NULL));
@@ -288,7 +288,6 @@ PetscErrorCode BoltDualSetUp(BoltDual *d)
 {
   BoltOperator *op = d->op;
   PetscInt      ng = 12 * op->contact->nelem + 1;
-  PC            pc;
   Mat           Kc, Z;
 
   PetscFunctionBeginUser;
@@ -304,19 +303,13 @@ PetscErrorCode BoltDualSetUp(BoltDual *d)
   PetscCall(MatDuplicate(op->K, MAT_COPY_VALUES, &d->Keff));
   PetscCall(MatAXPY(d->Keff, 1.0, Z, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatDestroy(&Z));
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)op->K), &d->ksp)); /* the matrices' communicator */
-  PetscCall(KSPSetOptionsPrefix(d->ksp, op->prefix));
-  PetscCall(KSPSetType(d->ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(d->ksp, &pc));
   {
     /* K_eff is symmetric (the stick penalty is): Cholesky (LDL' in MUMPS) halves the factor */
     PetscBool set, sym;
     PetscCall(MatIsSymmetricKnown(op->K, &set, &sym));
     if (set && sym) PetscCall(MatSetOption(d->Keff, MAT_SYMMETRIC, PETSC_TRUE));
-    PetscCall(PCSetType(pc, set && sym ? PCCHOLESKY : PCLU));
+    PetscCall(BoltDirectSolverCreate(PetscObjectComm((PetscObject)op->K), op->prefix, NULL, (PetscBool)(set && sym), op->solverType, &d->ksp));
   }
-  PetscCall(PCFactorSetMatSolverType(pc, op->solverType));
-  PetscCall(KSPSetFromOptions(d->ksp));
   PetscFunctionReturn(0);
 }
 

@@ -43,20 +43,11 @@ static PetscErrorCode IRLift(BoltInterface *ir, Vec xI, Vec u)
 
 static PetscErrorCode IRFactor(BoltInterface *ir, Mat A, const char prefix[], KSP *ksp)
 {
-  PC pc;
-
   PetscFunctionBeginUser;
-  PetscCall(KSPCreate(ir->comm, ksp));
-  PetscCall(KSPSetOptionsPrefix(*ksp, prefix));
-  PetscCall(KSPSetOperators(*ksp, A, A));
-  PetscCall(KSPSetType(*ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(*ksp, &pc));
   /* Kt = K + s0 C + s0^2 M is symmetric positive definite for s0 > 0: Cholesky keeps half the
      factor of LU, which is what lets the interface reduction run on meshes of 500k DOFs */
   PetscCall(MatSetOption(A, MAT_SPD, PETSC_TRUE));
-  PetscCall(PCSetType(pc, PCCHOLESKY));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(KSPSetFromOptions(*ksp));
+  PetscCall(BoltDirectSolverCreate(ir->comm, prefix, A, PETSC_TRUE, MATSOLVERMUMPS, ksp));
   PetscCall(KSPSetUp(*ksp));
   PetscFunctionReturn(0);
 }

@@ -226,14 +226,9 @@ static PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt,
   PetscCall(MatIsSymmetricKnown(M, &set, &symM));
   symM = (PetscBool)(set && symM);
   if (symK && symC && symM) PetscCall(MatSetOption(*Kt, MAT_SYMMETRIC, PETSC_TRUE));
-  PetscCall(KSPCreate(comm, ksp));
-  PetscCall(KSPSetOptionsPrefix(*ksp, "krylov_"));
-  PetscCall(KSPSetOperators(*ksp, *Kt, *Kt));
-  PetscCall(KSPSetType(*ksp, KSPPREONLY));
+  /* Cholesky when Kt is symmetric: half the factor of LU */
+  PetscCall(BoltDirectSolverCreate(comm, "krylov_", *Kt, (PetscBool)(symK && symC && symM), MATSOLVERMUMPS, ksp));
   PetscCall(KSPGetPC(*ksp, &pc));
-  PetscCall(PCSetType(pc, (symK && symC && symM) ? PCCHOLESKY : PCLU)); /* half the factor of LU */
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(KSPSetFromOptions(*ksp));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &isfactor, PCLU, PCCHOLESKY, ""));
   PetscCheck(isfactor, comm, PETSC_ERR_USER_INPUT, "-krylov_pc_type must be lu or cholesky: the Krylov blocks are solved with MatMatSolve on a direct factorization");
   PetscCall(KSPSetUp(*ksp));

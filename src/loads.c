@@ -64,6 +64,7 @@ static PetscErrorCode BoltLoadSpread(BoltMesh *m, const char group[], const Pets
     PetscInt    idx[3];
     PetscScalar v[3];
     PetscCall(BoltMeshVertexDofs(m, verts[i], idx));
+    if (idx[0] < 0) continue; /* clamped: VecSetValues would write before the array (no check in an optimised PETSc) */
     for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] / n;
     PetscCall(VecSetValues(f, 3, idx, v, ADD_VALUES));
   }
@@ -96,6 +97,7 @@ static PetscErrorCode BoltLoadFaces(BoltMesh *m, PetscInt nfaces, const PetscInt
       PetscInt    idx[3];
       PetscScalar v[3];
       PetscCall(BoltMeshVertexDofs(m, fv[4 * i + a], idx));
+      if (idx[0] < 0) continue; /* clamped, as above */
       for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] * area[i] / (4 * aglob);
       PetscCall(VecSetValues(f, 3, idx, v, ADD_VALUES));
     }

@@ -4,49 +4,6 @@
 #include "boltrom_krylov.h"
 #include "boltrom_interface.h"
 
-PetscErrorCode BoltReductionOptionsSetFromOptions(MPI_Comm comm, BoltReductionOptions *o)
-{
-  PetscFunctionBeginUser;
-  o->comm        = comm;
-  o->file[0]     = '\0';
-  o->rebuild     = PETSC_TRUE;
-  o->extraInputs = PETSC_FALSE;
-  o->checkOrthogonality = PETSC_FALSE;
-  o->nCCM = o->nJIM = 100; /* the paper's */
-  o->fomPreload = NULL;
-  PetscOptionsBegin(comm, NULL, "Reduction", "boltrom");
-  PetscCall(PetscOptionsString("-rom_file", "ROM file (HDF5) to reuse if it matches, or to write", NULL, o->file, o->file, sizeof(o->file), NULL));
-  PetscCall(PetscOptionsInt("-rom_n_ccm", "Interface reduction: characteristic constraint mode vectors (0 and -rom_n_jim 0: no interface reduction)", NULL, o->nCCM, &o->nCCM, NULL));
-  PetscCall(PetscOptionsInt("-rom_n_jim", "Interface reduction: joint interface mode vectors", NULL, o->nJIM, &o->nJIM, NULL));
-  PetscCall(PetscOptionsBool("-rom_check_orthogonality", "Measure max |V'V - I| of the basis (costs n^2 N)", NULL, o->checkOrthogonality, &o->checkOrthogonality, NULL));
-  PetscCall(PetscOptionsBool("-rom_rebuild", "Rebuild a ROM file that does not match the scene (false: refuse)", NULL, o->rebuild, &o->rebuild, NULL));
-  PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
-  o->augment = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
-  o->preloadState = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_preload_state", "ROM with the penalty law: start from the FOM's preloaded state, solved offline (its displacement and its closed-contact load response join the basis; its multipliers stay frozen online, the penalty carries the increments)", NULL, o->preloadState, &o->preloadState, &o->preloadStateSet));
-  o->penaltyScale = 0;
-  o->nClosed = 3;
-  PetscCall(PetscOptionsInt("-rom_closed_krylov", "With -rom_preload_state or -rom_static_shapes: closed-contact Krylov vectors added after the load response (each the FOM's static response, contact closed, to the mass times the previous one)", NULL, o->nClosed, &o->nClosed, NULL));
-  PetscCall(PetscOptionsReal("-rom_contact_penalty_scale", "The ROM's contact penalties as a multiple of the FOM's (default with -rom_preload_state against an augmented FOM: 500, or 20 with -rom_closed_krylov 0; else 1)", NULL, o->penaltyScale, &o->penaltyScale, NULL));
-  o->staticPenaltyScale = 1e4;
-  PetscCall(PetscOptionsReal("-rom_static_penalty_scale", "With -rom_preload_state: the penalty of the offline static solves from the preloaded state (load response, closed-contact Krylov vectors) as a multiple of the FOM's; they converge to the same gap-free state, in fewer iterations the stiffer it is", NULL, o->staticPenaltyScale, &o->staticPenaltyScale, NULL));
-  o->closedKeepActive = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_closed_keep_active", "With -rom_closed_krylov: the closed-contact Krylov vectors keep the preloaded active set (false: their forcing may open and close points, as the load response's does)", NULL, o->closedKeepActive, &o->closedKeepActive, NULL));
-  o->staticShapes = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_static_shapes", "The augmented ROM (without interface reduction) too: the FOM's preloaded state, its load response and the -rom_closed_krylov vectors join the basis (they carry the closed joint's inertia: order 1 is 0.76 off without them at the paper level, 2.3e-4 with them)", NULL, o->staticShapes, &o->staticShapes, NULL));
-  o->bandScale = 0;
-  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (README: 10 helps at level 1.8 and where the load opens the joint, and costs accuracy in paper-step)", NULL, o->bandScale, &o->bandScale, NULL));
-  PetscOptionsEnd();
-  PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
-  PetscCheck(o->staticPenaltyScale > 0, comm, PETSC_ERR_USER_INPUT, "-rom_static_penalty_scale must be > 0 (got %g)", (double)o->staticPenaltyScale);
-  PetscCheck(o->bandScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_band_scale must be > 0 (got %g)", (double)o->bandScale);
-  PetscCheck(o->nClosed >= 0 && o->nClosed <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_closed_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nClosed);
-  PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
-  if (o->file[0]) PetscCall(BoltMakeParentDir(comm, o->file)); /* fail now, not after the offline phase */
-  PetscFunctionReturn(0);
-}
-
 /* Columns e_a - e_b for every matched node pair and direction, then the load and the preload. */
 static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, BV *B, PetscInt *ncols)
 {
@@ -349,19 +306,19 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
      arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps
      the reduced contact problem well posed, so it is the default there. */
   rom->augment = o->augmentSet ? o->augment : (PetscBool)(contact->augment && o->nCCM + o->nJIM == 0);
-  PetscCall(BoltKrylovCreate(o->comm, &kry));
-  PetscCall(BoltKrylovSetFromOptions(kry));
+  PetscCheck(o->krylov, o->comm, PETSC_ERR_ARG_WRONGSTATE, "BoltROMBuild needs the Krylov options: configure the reduction with BoltReductionSetFromOptions");
+  kry = o->krylov;
   PetscCall(BoltROMFingerprint(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, rom->fingerprint, sizeof(rom->fingerprint)));
   /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
   rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && loads->hasPreload && loads->preloadForce != 0);
   PetscCheck(!(o->preloadStateSet && o->preloadState) || rom->preloadState, o->comm, PETSC_ERR_USER_INPUT, "-rom_preload_state needs a ROM with the penalty law (interface reduction, -rom_contact_augment false) and a nonzero bolt preload");
   /* Against a FOM that closes its gaps the increments want a near-hard penalty: 500 x the paper's
      is 1e5 E/m, where the penalty law alone matches the augmented FOM. Without the closed-contact
-     Krylov shapes so stiff a penalty locks the reduced interface, and 20 x is the best (README). */
+     Krylov shapes so stiff a penalty locks the reduced interface, and 20 x does best (docs/reduction.md). */
   rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augment ? (o->nClosed > 0 ? 500.0 : 20.0) : 1.0);
   /* Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
      at the rim of the preloaded zone the FOM's band lets such errors open points the FOM keeps
-     closed. A wider band helps there but not in paper-step (README), so 1 stays the default */
+     closed. A wider band helps there but not in paper-step (docs/results.md), so 1 stays the default */
   rom->bandScale = o->bandScale > 0 ? o->bandScale : 1.0;
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
   staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && loads->hasPreload && loads->preloadForce != 0));
@@ -369,7 +326,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   if (staticShapes) {
     char more[64];
     PetscCall(PetscStrlcat(rom->fingerprint, rom->preloadState ? "; preload state" : "; static shapes", sizeof(rom->fingerprint)));
-    if (o->nClosed > 0) { /* the active set named either way, so that files of session 12 and before (free) are rebuilt */
+    if (o->nClosed > 0) { /* the active set named either way, so that files built with the set free are rebuilt */
       PetscCall(PetscSNPrintf(more, sizeof(more), "; closed-contact Krylov %" PetscInt_FMT " (%s)", o->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free"));
       PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
     }
@@ -392,7 +349,6 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         loaded->nClosed      = rom->nClosed;
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
-        PetscCall(BoltKrylovDestroy(&kry));
         PetscCall(PetscFree(rom));
         *romp = loaded;
         PetscFunctionReturn(0);
@@ -427,6 +383,8 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(BoltKrylovBuild(kry, asmb->M, C, asmb->K, B, &V));
   PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
   PetscCall(BoltInterfaceDestroy(&ir)); /* its factorisations are not needed from here on */
+  kry->solve    = NULL;
+  kry->solveCtx = NULL;
   PetscCall(BVDestroy(&B));
   /* the preloaded state's static solves factor the FOM: the damping matrix is rebuilt after them
      rather than held through them (at 562k DOFs the two did not fit in 24 GB together) */
@@ -490,7 +448,6 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(PetscPrintf(o->comm, "\n"));
   PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
   if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file, rom->fingerprint));
-  PetscCall(BoltKrylovDestroy(&kry));
   PetscCall(BVDestroy(&V));
   PetscCall(MatDestroy(&C));
   *romp = rom;

@@ -326,7 +326,6 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   Mat       A, Ar, Kc, Kcr, C;
   Vec       q, f, qr;
   KSP       ksp, kspr;
-  PC        pc;
   PetscReal s0 = rom->s0, num[2] = {0, 0}, den[2] = {0, 0}, pf, pr;
   Vec       ucFull;
   BoltContactState *sFull;
@@ -339,11 +338,7 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(MatAXPY(Ar, s0 * s0, rom->Mr, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(Ar, 1.0, Kcr, SAME_NONZERO_PATTERN));
   PetscCall(VecDuplicate(rom->loadr, &qr));
-  PetscCall(KSPCreate(PETSC_COMM_SELF, &kspr));
-  PetscCall(KSPSetOperators(kspr, Ar, Ar));
-  PetscCall(KSPSetType(kspr, KSPPREONLY));
-  PetscCall(KSPGetPC(kspr, &pc));
-  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(BoltDirectSolverCreate(PETSC_COMM_SELF, NULL, Ar, PETSC_FALSE, NULL, &kspr)); /* LAPACK: PETSc's default for dense */
   PetscCall(KSPSolve(kspr, rom->loadr, qr));
   /* FOM, with the ROM's penalties: a state of its own, every point active */
   PetscCall(BoltContactStateCreate(c, &sFull));
@@ -356,12 +351,7 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(MatAXPY(A, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
   PetscCall(VecDuplicate(loads->load, &q));
   f = loads->load;
-  PetscCall(KSPCreate(rom->comm, &ksp));
-  PetscCall(KSPSetOperators(ksp, A, A));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(BoltDirectSolverCreate(rom->comm, NULL, A, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
   PetscCall(KSPSolve(ksp, f, q));
   /* compare at the contact DOFs and the probe */
   PetscCall(BoltContactSetScatter(c, q));

@@ -1,5 +1,6 @@
-"""Faults: checkpoints and restart (the continuation equals the uninterrupted run), and a run
-killed mid-way leaves the previous results and the last checkpoint complete."""
+"""Faults: checkpoints and restart (the continuation equals the uninterrupted run), a run
+killed mid-way leaves the previous results and the last checkpoint complete, and a run with a
+misspelled option or an unwritable folder stops before it computes anything, with nothing written."""
 import json
 import signal
 import subprocess
@@ -110,3 +111,43 @@ def test_killed_run_leaves_previous_results(joint_small, tmp_path):
     assert f"restarted from {out / 'paper-step-fom.ckpt.h5'} at step {step}" in p.stdout
     with h5py.File(out / "paper-step.h5") as f:
         assert len(f["/fom/probe"]) == 81 and np.all(np.isfinite(f["/fom/probe"][...]))
+
+
+def one_line_error(proc):
+    lines = [l for l in proc.stderr.splitlines() if l.strip()]
+    assert proc.returncode != 0
+    assert len(lines) == 1 and lines[0].startswith("boltrom: error: "), proc.stderr
+    return lines[0]
+
+
+def test_misspelled_option_stops_before_any_computation(joint_small, tmp_path):
+    """-ts_dtt for -ts_dt on a FOM + ROM run: the one-line error names it before the mesh is even
+    read (the mesh report is a run's first line); no results, no ROM file. The same run spelled
+    right (shorter) does compute, print and write all of these."""
+    mesh, _ = joint_small
+    good = scene(mesh, tmp_path / "good", "out", "2e-4", "-monitor")
+    p = run_boltrom(good)
+    assert p.stdout.startswith("Mesh ") and "Preload" in p.stdout and "FOM step" in p.stdout and "ROM step" in p.stdout
+    assert (tmp_path / "good" / "rom.h5").exists() and (tmp_path / "good" / "out" / "summary.json").exists()
+    bad = tmp_path / "bad"
+    p = run_boltrom(scene(mesh, bad, "out", "1e-3", "-monitor", "-ts_dtt", "1e-4"), check=False)
+    line = one_line_error(p)
+    assert "-ts_dtt" in line and "Unknown or unused option" in line
+    assert p.stdout == "" and "Preload" not in p.stdout and "step" not in p.stdout
+    assert not bad.exists() or not any(bad.rglob("*")), list(bad.rglob("*"))
+
+
+def test_unwritable_output_dir_stops_before_any_computation(joint_small, tmp_path):
+    """An output folder under a regular file (permission bits do not stop root): the one-line error
+    names the folder and -output_dir before anything is computed, and nothing is written (not the
+    summary's folder, not the ROM file)."""
+    mesh, _ = joint_small
+    afile = tmp_path / "afile"
+    afile.write_text("a file, not a folder\n")
+    out = afile / "out"
+    p = run_boltrom(scene(mesh, tmp_path, "x", "1e-3", "-monitor") + ["-output_dir", out, "-summary", tmp_path / "s" / "summary.json"],
+                    check=False)
+    line = one_line_error(p)
+    assert f"Cannot create or write the directory {out}" in line and "-output_dir" in line
+    assert p.stdout == ""
+    assert [q.name for q in tmp_path.iterdir()] == ["afile"] and afile.read_text() == "a file, not a folder\n"

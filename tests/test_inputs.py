@@ -193,3 +193,23 @@ def test_load_on_clamped_nodes(beam, tmp_path):
 
 def test_probe_on_clamped_node(beam, tmp_path):
     expect_error(["-mesh", beam, "-load_group", "tip", "-probe_group", "clamp"], tmp_path, "Probe group 'clamp'", "clamped", "-probe_group")
+
+
+@pytest.mark.parametrize("args, words", [
+    (["-contact_law", "coulomb"], ["contact law", "coulomb"]),
+    (["-contact_inner", "newton"], ["-contact_inner", "newton"]),
+])
+def test_unknown_registered_type(joint_small, tmp_path, args, words):
+    """The contact law and the contact loop's inner solver are looked up in their registries when
+    the options are read: a name that is not there stops the run before the mesh is read."""
+    mesh, _ = joint_small
+    out = tmp_path / "out"
+    proc = run_boltrom(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-fom", "-ts_end", "5e-4",
+                        "-output_dir", out] + args, check=False)
+    assert proc.returncode != 0
+    lines = [l for l in proc.stderr.splitlines() if l.strip()]
+    assert len(lines) == 1 and lines[0].startswith("boltrom: error: "), proc.stderr
+    for w in words:
+        assert w in lines[0], (w, lines[0])
+    assert "Mesh" not in proc.stdout and "Preload" not in proc.stdout, proc.stdout
+    assert not out.exists()

@@ -1,0 +1,114 @@
+/* The model reduction as an object configured up front: the reduction's options (-rom_*), the
+   Krylov basis's (-krylov_*) and those of the solvers of the offline phase are read once, at the
+   start of every run whatever -rom says (a scene file may carry the ROM's settings while the ROM
+   is switched off), so that a wrong one stops the run before any computation. BoltReductionBuild
+   then runs the builder, BoltROMBuild (reduction.c). */
+#include "boltrom.h"
+
+PetscErrorCode BoltReductionCreate(MPI_Comm comm, BoltReduction **redp)
+{
+  BoltReduction *red;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&red));
+  red->comm     = comm;
+  red->opt.comm = comm;
+  PetscCall(BoltKrylovCreate(comm, &red->opt.krylov));
+  *redp = red;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
+{
+  MPI_Comm              comm = red->comm;
+  BoltReductionOptions *o    = &red->opt;
+
+  PetscFunctionBeginUser;
+  o->file[0]     = '\0';
+  o->rebuild     = PETSC_TRUE;
+  o->extraInputs = PETSC_FALSE;
+  o->checkOrthogonality = PETSC_FALSE;
+  o->nCCM = o->nJIM = 100; /* the paper's */
+  o->fomPreload = NULL;
+  red->view     = PETSC_FALSE;
+  PetscOptionsBegin(comm, NULL, "Reduction", "boltrom");
+  PetscCall(PetscOptionsString("-rom_file", "ROM file (HDF5) to reuse if it matches, or to write", NULL, o->file, o->file, sizeof(o->file), NULL));
+  PetscCall(PetscOptionsInt("-rom_n_ccm", "Interface reduction: characteristic constraint mode vectors (0 and -rom_n_jim 0: no interface reduction)", NULL, o->nCCM, &o->nCCM, NULL));
+  PetscCall(PetscOptionsInt("-rom_n_jim", "Interface reduction: joint interface mode vectors", NULL, o->nJIM, &o->nJIM, NULL));
+  PetscCall(PetscOptionsBool("-rom_check_orthogonality", "Measure max |V'V - I| of the basis (costs n^2 N)", NULL, o->checkOrthogonality, &o->checkOrthogonality, NULL));
+  PetscCall(PetscOptionsBool("-rom_rebuild", "Rebuild a ROM file that does not match the scene (false: refuse)", NULL, o->rebuild, &o->rebuild, NULL));
+  PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
+  o->augment = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
+  o->preloadState = PETSC_TRUE;
+  PetscCall(PetscOptionsBool("-rom_preload_state", "ROM with the penalty law: start from the FOM's preloaded state, solved offline (its displacement and its closed-contact load response join the basis; its multipliers stay frozen online, the penalty carries the increments)", NULL, o->preloadState, &o->preloadState, &o->preloadStateSet));
+  o->penaltyScale = 0;
+  o->nClosed = 3;
+  PetscCall(PetscOptionsInt("-rom_closed_krylov", "With -rom_preload_state or -rom_static_shapes: closed-contact Krylov vectors added after the load response (each the FOM's static response, contact closed, to the mass times the previous one)", NULL, o->nClosed, &o->nClosed, NULL));
+  PetscCall(PetscOptionsReal("-rom_contact_penalty_scale", "The ROM's contact penalties as a multiple of the FOM's (default with -rom_preload_state against an augmented FOM: 500, or 20 with -rom_closed_krylov 0; else 1)", NULL, o->penaltyScale, &o->penaltyScale, NULL));
+  o->staticPenaltyScale = 1e4;
+  PetscCall(PetscOptionsReal("-rom_static_penalty_scale", "With -rom_preload_state: the penalty of the offline static solves from the preloaded state (load response, closed-contact Krylov vectors) as a multiple of the FOM's; they converge to the same gap-free state, in fewer iterations the stiffer it is", NULL, o->staticPenaltyScale, &o->staticPenaltyScale, NULL));
+  o->closedKeepActive = PETSC_TRUE;
+  PetscCall(PetscOptionsBool("-rom_closed_keep_active", "With -rom_closed_krylov: the closed-contact Krylov vectors keep the preloaded active set (false: their forcing may open and close points, as the load response's does)", NULL, o->closedKeepActive, &o->closedKeepActive, NULL));
+  o->staticShapes = PETSC_TRUE;
+  PetscCall(PetscOptionsBool("-rom_static_shapes", "The augmented ROM (without interface reduction) too: the FOM's preloaded state, its load response and the -rom_closed_krylov vectors join the basis (they carry the closed joint's inertia, which order 1 misses without them)", NULL, o->staticShapes, &o->staticShapes, NULL));
+  o->bandScale = 0;
+  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (a wider band helps on fine meshes and where the load opens the joint, and costs accuracy in paper-step: docs/results.md)", NULL, o->bandScale, &o->bandScale, NULL));
+  PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, red->view, &red->view, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
+  PetscCheck(o->staticPenaltyScale > 0, comm, PETSC_ERR_USER_INPUT, "-rom_static_penalty_scale must be > 0 (got %g)", (double)o->staticPenaltyScale);
+  PetscCheck(o->bandScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_band_scale must be > 0 (got %g)", (double)o->bandScale);
+  PetscCheck(o->nClosed >= 0 && o->nClosed <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_closed_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nClosed);
+  PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
+  PetscCall(BoltKrylovSetFromOptions(o->krylov));
+  /* the offline phase's solvers and basis vectors, made later from the model: Kt's factorisation
+     (krylov_), the interface reduction's two (ir_, ir_interior_), the input block (BV, no prefix) */
+  PetscCall(BoltDirectSolverSetFromOptions(comm, "krylov_", PETSC_TRUE, MATSOLVERMUMPS));
+  PetscCall(BoltDirectSolverSetFromOptions(comm, "ir_", PETSC_TRUE, MATSOLVERMUMPS));
+  PetscCall(BoltDirectSolverSetFromOptions(comm, "ir_interior_", PETSC_TRUE, MATSOLVERMUMPS));
+  {
+    BV bv;
+    PetscCall(BVCreate(comm, &bv));
+    PetscCall(BVSetFromOptions(bv));
+    PetscCall(BVDestroy(&bv));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltReductionView(BoltReduction *red, PetscViewer viewer)
+{
+  BoltReductionOptions *o = &red->opt;
+  BoltKrylov           *k = o->krylov;
+  PetscBool             iascii;
+
+  PetscFunctionBeginUser;
+  if (!viewer) viewer = PETSC_VIEWER_STDOUT_(red->comm);
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
+  if (!iascii) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "Reduction: Krylov order %" PetscInt_FMT ", s0 %g rad/s, block size %" PetscInt_FMT ", deflation tol %g; interface reduction CCM %" PetscInt_FMT " + JIM %" PetscInt_FMT "%s\n", k->order, (double)k->s0, k->blockSize, (double)k->deflationTol, o->nCCM, o->nJIM, o->nCCM + o->nJIM ? "" : " (none)"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  file %s (%s), contact law %s, preload state %s, closed-contact Krylov %" PetscInt_FMT " (%s), static shapes %s\n", o->file[0] ? o->file : "(none)", o->rebuild ? "rebuilt if it does not match" : "refused if it does not match", o->augmentSet ? (o->augment ? "augmented" : "penalty") : "default", PetscBools[o->preloadState], o->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free", PetscBools[o->staticShapes]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  penalty scale %g, band scale %g (0: default), static penalty scale %g\n", (double)o->penaltyScale, (double)o->bandScale, (double)o->staticPenaltyScale));
+  PetscFunctionReturn(0);
+}
+
+/* The reduced model of the scene: built, or read from -rom_file when that matches. fomPreload: the
+   FOM's preloaded state of this run, or NULL (the offline phase then solves it). */
+PetscErrorCode BoltReductionBuild(BoltReduction *red, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, const BoltPreloadState *fomPreload, BoltROM **rom)
+{
+  PetscFunctionBeginUser;
+  if (red->view) PetscCall(BoltReductionView(red, PETSC_VIEWER_STDOUT_(red->comm)));
+  red->opt.fomPreload = fomPreload;
+  PetscCall(BoltROMBuild(&red->opt, asmb, contact, loads, rom));
+  red->opt.fomPreload = NULL; /* the caller frees it */
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltReductionDestroy(BoltReduction **redp)
+{
+  PetscFunctionBeginUser;
+  if (!*redp) PetscFunctionReturn(0);
+  PetscCall(BoltKrylovDestroy(&(*redp)->opt.krylov));
+  PetscCall(PetscFree(*redp));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,158 @@
+/* A run: what it does and where it writes (main's options), and its stages once the model is set
+   up: the tied joint's analyses, the full-order model, the reduced-order model. */
+#include "boltrom.h"
+
+PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(o->outputDir, "output", sizeof(o->outputDir)));
+  PetscCall(PetscStrncpy(o->outputName, "joint", sizeof(o->outputName)));
+  o->summary[0]   = '\0';
+  o->staticSolve  = PETSC_TRUE;
+  o->verifyFields = PETSC_FALSE;
+  o->checkRigid   = PETSC_FALSE;
+  o->writeOutput  = PETSC_TRUE;
+  o->nev          = 3;
+  o->fom          = PETSC_FALSE;
+  o->rom          = PETSC_FALSE;
+  o->romCheckS0   = PETSC_FALSE;
+  o->exportDir[0] = '\0';
+  o->verifyField  = 0;
+  PetscOptionsBegin(comm, NULL, "Run", "boltrom");
+  PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
+  PetscCall(PetscOptionsString("-output_name", "Base name of the HDF5/XDMF files", NULL, o->outputName, o->outputName, sizeof(o->outputName), NULL));
+  PetscCall(PetscOptionsBool("-output", "Write the HDF5/XDMF results", NULL, o->writeOutput, &o->writeOutput, NULL));
+  PetscCall(PetscOptionsString("-summary", "Write a JSON summary to this file (keys: README, Outputs)", NULL, o->summary, o->summary, sizeof(o->summary), NULL));
+  PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
+  PetscCall(PetscOptionsBool("-fom", "Run the full-order model with contact: static preload, then the Newmark transient", NULL, o->fom, &o->fom, NULL));
+  PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));
+  PetscCall(PetscOptionsString("-export_matrices", "Folder for the tied stiffness and the mass matrix, full (K_tied.petsc, M.petsc) and, with -rom, reduced (rom_K_tied.petsc, rom_M.petsc), in PETSc binary format (python/compare_eigen.py reads them)", NULL, o->exportDir, o->exportDir, sizeof(o->exportDir), NULL));
+  PetscCall(PetscOptionsBool("-rom_check_s0", "Check the ROM against the FOM at s = s0 with every contact point active (exact for an order-1 ROM without interface reduction)", NULL, o->romCheckS0, &o->romCheckS0, NULL));
+  PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
+  PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));
+  {
+    const char *kinds[] = {"smooth", "linear"};
+    PetscCall(PetscOptionsEList("-verify_field", "The field x of -verify_fields: smooth (sines) or linear (patch test: K x vanishes at interior nodes)", NULL, kinds, 2, kinds[o->verifyField], &o->verifyField, NULL));
+  }
+  PetscCall(PetscOptionsBool("-check_rigid", "Check K r = 0 for the six rigid motions of every part (use with -clamp false)", NULL, o->checkRigid, &o->checkRigid, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->nev >= 0 && o->nev <= 100, comm, PETSC_ERR_USER_INPUT, "-modal_nev must be in [0, 100] (got %" PetscInt_FMT ")", o->nev);
+  PetscFunctionReturn(0);
+}
+
+/* A model's time integrator, set up (checkpoints beside the results unless -checkpoint_file). */
+static PetscErrorCode BoltRunNewmarkCreate(BoltRun *r, BoltOperator *op, BoltNewmark **nm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltNewmarkCreate(op, nm));
+  PetscCall(PetscSNPrintf((*nm)->checkpointBase, sizeof((*nm)->checkpointBase), "%s/%s", r->opt.outputDir, r->opt.outputName));
+  PetscCall(BoltNewmarkSetFromOptions(*nm));
+  (*nm)->preloadTarget = r->loads->hasPreload ? r->loads->preloadForce : 0;
+  PetscCall(BoltNewmarkSetUp(*nm));
+  PetscFunctionReturn(0);
+}
+
+/* The tied joint (every contact element active with its penalty stiffness): static solve,
+   eigenfrequencies, and the checks and exports of the assembled model. */
+PetscErrorCode BoltRunTied(BoltRun *r)
+{
+  BoltSummary   *s = &r->sum;
+  PetscLogDouble ts, te;
+
+  PetscFunctionBeginUser;
+  if (r->contact->npairs) PetscCall(BoltContactSetAssembleTied(r->contact, r->asmb->K, &r->Ktied));
+  else {
+    PetscCall(PetscObjectReference((PetscObject)r->asmb->K));
+    r->Ktied = r->asmb->K;
+  }
+  if (r->opt.staticSolve) {
+    PetscCall(PetscLogStagePush(boltLog.stageStatic));
+    PetscCall(PetscTime(&ts));
+    PetscCall(BoltStaticSolve(r->Ktied, r->loads->load, r->u, "static_"));
+    PetscCall(PetscTime(&te));
+    s->tStatic = te - ts;
+    PetscCall(BoltLoadSetProbe(r->loads, r->u, &s->probe));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscPrintf(r->comm, "Static (tied): probe u_%c at '%s' = %.10e m under %g N (%.2f s)\n", "xyz"[r->loads->probeComponent], r->loads->probeGroup, (double)s->probe, (double)r->loads->loadForce, (double)s->tStatic));
+  }
+  if (r->opt.exportDir[0]) PetscCall(BoltExportTied(r->opt.exportDir, r->Ktied, r->asmb->M));
+  if (r->opt.nev > 0) {
+    PetscCall(PetscLogStagePush(boltLog.stageModal));
+    PetscCall(PetscTime(&ts));
+    PetscCall(BoltModalSolve(r->Ktied, r->asmb->M, r->opt.nev, "modal_", &s->nconv, s->freq));
+    PetscCall(PetscTime(&te));
+    s->tModal = te - ts;
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscPrintf(r->comm, "Eigenfrequencies (tied) [Hz]:"));
+    for (PetscInt i = 0; i < s->nconv; i++) PetscCall(PetscPrintf(r->comm, " %.6f", (double)s->freq[i]));
+    PetscCall(PetscPrintf(r->comm, " (%.2f s)\n", (double)s->tModal));
+  }
+  if (r->opt.verifyFields) PetscCall(BoltVerifyFields(r->mesh, r->Ktied, r->asmb->M, r->u, r->opt.verifyField, &s->x, &s->Kx, &s->Mx));
+  if (r->opt.checkRigid) PetscCall(BoltCheckRigid(r->asmb, r->u, s->rigid));
+  PetscFunctionReturn(0);
+}
+
+/* The full-order model with contact: static preload, then the transient. */
+PetscErrorCode BoltRunFOM(BoltRun *r)
+{
+  BoltContactSet *contact = r->contact;
+  BoltSummary    *s       = &r->sum;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltFOMCreate(r->asmb, contact, r->loads, PETSC_TRUE, &r->fomOp));
+  PetscCall(BoltRunNewmarkCreate(r, r->fomOp, &r->fomNm));
+  PetscCall(PetscLogStagePush(boltLog.stagePreload));
+  PetscCall(BoltNewmarkPreload(r->fomNm));
+  PetscCall(PetscLogStagePop());
+  PetscCall(BoltContactStateNormalForcePerPair(r->fomOp->state, s->preloadForce));
+  PetscCall(PetscPrintf(r->comm, "Preload %g N: static contact solve in %g outer / %g inner iterations; normal force per pair [N]:", (double)r->loads->preloadForce, (double)r->fomNm->staticOuter, (double)r->fomNm->staticInner));
+  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(PetscPrintf(r->comm, " %s %.6f", contact->pairName[p], (double)s->preloadForce[p]));
+  PetscCall(PetscPrintf(r->comm, "\n"));
+  PetscCall(BoltMemoryPrint(r->comm, "the FOM's preload"));
+  PetscCall(BoltContactStateTractionStats(r->fomOp->state, &s->tractionStats[0], &s->tractionStats[1], &s->tractionStats[2]));
+  s->preloadActive      = r->fomOp->state->nactive;
+  s->preloadPenetration = r->fomNm->dual->lastPenetration;
+  s->preloadChange      = r->fomNm->dual->lastChange;
+  if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, r->fomNm->q, r->fomNm->staticOuter, r->fomNm->staticInner, &r->fomPreload)); /* the ROM's offline phase starts from it */
+  PetscCall(PetscLogStagePush(boltLog.stageTransient));
+  PetscCall(BoltNewmarkRun(r->fomNm));
+  PetscCall(PetscLogStagePop());
+  PetscCall(BoltNewmarkView(r->fomNm, PETSC_VIEWER_STDOUT_(r->comm)));
+  /* at 562k DOFs the FOM's factorisation and the offline phase's two would not fit in memory together */
+  PetscCall(BoltNewmarkReleaseSolver(r->fomNm));
+  PetscCall(MatDestroy(&r->fomOp->C)); /* the FOM has run: its damping is not needed any more */
+  PetscCall(BoltMemoryRelease());
+  PetscCall(BoltMemoryPrint(r->comm, "the FOM run (its solver released)"));
+  s->fomRun = r->fomNm;
+  PetscFunctionReturn(0);
+}
+
+/* The reduced-order model: offline reduction (or a matching ROM file), static preload, transient,
+   and its errors against the FOM's run if there is one. */
+PetscErrorCode BoltRunROM(BoltRun *r)
+{
+  BoltSummary *s = &r->sum;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltReductionBuild(r->red, r->asmb, r->contact, r->loads, r->fomPreload, &r->rom));
+  PetscCall(BoltPreloadStateDestroy(&r->fomPreload));
+  PetscCall(BoltROMOperatorCreate(r->rom, &r->romOp));
+  if (r->opt.romCheckS0) PetscCall(BoltROMCheckAtS0(r->rom, r->romOp, r->asmb, r->contact, r->loads, &s->romCheckError));
+  if (r->opt.exportDir[0]) PetscCall(BoltExportReduced(r->opt.exportDir, r->rom, r->romOp));
+  PetscCall(BoltRunNewmarkCreate(r, r->romOp, &r->romNm));
+  PetscCall(BoltROMSetPreloadState(r->rom, r->romNm, r->loads->preloadForce));
+  PetscCall(PetscLogStagePush(boltLog.stagePreload));
+  PetscCall(BoltNewmarkPreload(r->romNm));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(boltLog.stageTransient));
+  PetscCall(BoltNewmarkRun(r->romNm));
+  PetscCall(PetscLogStagePop());
+  PetscCall(BoltNewmarkView(r->romNm, PETSC_VIEWER_STDOUT_(r->comm)));
+  if (r->fomNm) {
+    PetscCall(BoltHistoryErrors(r->fomNm->nsteps + 1, r->fomNm->probeValue, r->romNm->probeValue, &s->errL2, &s->errMean));
+    PetscCall(PetscPrintf(r->comm, "ROM against FOM at '%s': e_L2 %.4e, mean relative error %.4e; speedup (online) %.1f\n", r->loads->probeGroup, (double)s->errL2, (double)s->errMean, (double)(r->fomNm->tOnline / r->romNm->tOnline)));
+  }
+  s->rom    = r->rom;
+  s->romRun = r->romNm;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,240 @@
+/* A run's results: the JSON summary (-summary: the model, the tied analyses, and the FOM's and the
+   ROM's runs with their counters and phase times; the keys are listed in the README) and the
+   HDF5/XDMF file of its fields and histories. */
+#include "boltrom.h"
+
+/* The figures of a Newmark run that the FOM and the ROM share; full (the FOM's) adds the time
+   step, the largest iteration counts, the contact points and the probe's range. */
+static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, PetscBool full)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltJSONInt(j, "steps", nm->nsteps));
+  if (full) PetscCall(BoltJSONReal(j, "dt", nm->dt));
+  PetscCall(BoltJSONReal(j, "online_s", nm->tOnline));
+  PetscCall(BoltJSONReal(j, "contact_stiffness_s", nm->dual->tContactStiffness));
+  PetscCall(BoltJSONReal(j, "displacements_s", nm->dual->tDisplacements));
+  PetscCall(BoltJSONReal(j, "contact_forces_s", nm->dual->tContactForces));
+  PetscCall(BoltJSONInt(j, "factorizations", nm->dual->factorizations));
+  PetscCall(BoltJSONInt(j, "solves", nm->dual->solves));
+  PetscCall(BoltJSONInt(j, "outer_total", nm->dual->outerTotal));
+  PetscCall(BoltJSONInt(j, "inner_total", nm->dual->innerTotal));
+  if (full) {
+    PetscCall(BoltJSONInt(j, "outer_max", nm->dual->outerMax));
+    PetscCall(BoltJSONInt(j, "inner_max", nm->dual->innerMax));
+  }
+  PetscCall(BoltJSONInt(j, "failures", nm->dual->failures));
+  PetscCall(BoltJSONInt(j, "cycles", nm->dual->cycles));
+  if (full) {
+    PetscCall(BoltJSONInt(j, "active_points", nm->op->state->nactive));
+    PetscCall(BoltJSONInt(j, "contact_points", nm->op->contact->ngpGlobal));
+  }
+  PetscCall(BoltJSONReal(j, "probe_final", nm->probeValue[nm->nsteps]));
+  if (full) {
+    PetscReal mn = 0, mx = 0;
+    for (PetscInt i = 0; i <= nm->nsteps; i++) {
+      mn = PetscMin(mn, nm->probeValue[i]);
+      mx = PetscMax(mx, nm->probeValue[i]);
+    }
+    PetscCall(BoltJSONReal(j, "probe_min", mn));
+    PetscCall(BoltJSONReal(j, "probe_max", mx));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The model: sizes, partition, and per pair and per part figures. */
+static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIInt size)
+{
+  BoltMesh       *mesh    = s->mesh;
+  BoltAssembler  *asmb    = s->asmb;
+  BoltContactSet *contact = s->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltJSONString(j, "mesh", mesh->filename));
+  PetscCall(BoltJSONInt(j, "ranks", size));
+  PetscCall(BoltJSONString(j, "element", mesh->formulation == HEX8_FULL ? "full" : "incompatible"));
+  PetscCall(BoltJSONString(j, "partitioner", mesh->partitioner));
+  PetscCall(BoltJSONInt(j, "edge_cut", mesh->edgeCut));
+  PetscCall(BoltJSONInt(j, "nodes", mesh->nverticesGlobal));
+  PetscCall(BoltJSONInt(j, "elements", mesh->ncellsGlobal));
+  PetscCall(BoltJSONInt(j, "dofs", 3 * mesh->nverticesGlobal));
+  PetscCall(BoltJSONInt(j, "free_dofs", mesh->ndofsFree));
+  PetscCall(BoltJSONInt(j, "contact_dofs", contact->contactDofs));
+  PetscCall(BoltJSONBeginObject(j, "contact_dofs_per_pair"));
+  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONInt(j, contact->pairName[p], contact->contactDofsPerPair[p]));
+  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONBeginObject(j, "contact_elements_per_pair"));
+  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONInt(j, contact->pairName[p], contact->elementsPerPair[p]));
+  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONBeginObject(j, "contact_area_per_pair"));
+  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONReal(j, contact->pairName[p], contact->areaPerPair[p]));
+  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONBeginObject(j, "elements_per_part"));
+  for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONInt(j, mesh->partName[p], asmb->elementsPerPart[p]));
+  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONBeginObject(j, "mass_per_part"));
+  for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONReal(j, mesh->partName[p], asmb->massPerPart[p]));
+  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONBeginObject(j, "volume_per_part"));
+  for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONReal(j, mesh->partName[p], asmb->volumePerPart[p]));
+  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONBeginObject(j, "material_per_part"));
+  for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONString(j, mesh->partName[p], mesh->materials.mat[mesh->partMaterial[p]].name));
+  PetscCall(BoltJSONEndObject(j));
+  PetscFunctionReturn(0);
+}
+
+/* The tied joint's analyses: static, modal, rigid motions. */
+static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
+{
+  BoltLoadSet *loads = s->loads;
+
+  PetscFunctionBeginUser;
+  if (s->staticSolve) {
+    PetscCall(BoltJSONBeginObject(j, "static"));
+    PetscCall(BoltJSONReal(j, "load_force", loads->loadForce));
+    PetscCall(BoltJSONString(j, "probe_group", loads->probeGroup));
+    PetscCall(BoltJSONInt(j, "probe_component", loads->probeComponent));
+    PetscCall(BoltJSONRealArray(j, "probe_coordinates", 3, loads->probeCoord));
+    PetscCall(BoltJSONReal(j, "probe_displacement", s->probe));
+    PetscCall(BoltJSONReal(j, "seconds", s->tStatic));
+    PetscCall(BoltJSONEndObject(j));
+  }
+  if (s->nev > 0) {
+    PetscCall(BoltJSONBeginObject(j, "modal"));
+    PetscCall(BoltJSONRealArray(j, "frequencies_hz", s->nconv, s->freq));
+    PetscCall(BoltJSONReal(j, "seconds", s->tModal));
+    PetscCall(BoltJSONEndObject(j));
+  }
+  if (s->checkRigid) {
+    PetscCall(BoltJSONBeginObject(j, "rigid_residual_per_part"));
+    for (PetscInt p = 0; p < s->mesh->nparts; p++) PetscCall(BoltJSONReal(j, s->mesh->partName[p], s->rigid[p]));
+    PetscCall(BoltJSONEndObject(j));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The FOM's preloaded state and its run. */
+static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
+{
+  const BoltNewmark    *nm      = s->fomRun;
+  const BoltContactSet *contact = s->contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltJSONBeginObject(j, "preload"));
+  PetscCall(BoltJSONReal(j, "force", s->loads->preloadForce));
+  PetscCall(BoltJSONReal(j, "layer_force_scale", nm->preloadScale));
+  PetscCall(BoltJSONReal(j, "outer", nm->staticOuter));
+  PetscCall(BoltJSONReal(j, "inner", nm->staticInner));
+  PetscCall(BoltJSONInt(j, "factorizations", nm->staticFactorizations));
+  PetscCall(BoltJSONInt(j, "solves", nm->staticSolves));
+  PetscCall(BoltJSONReal(j, "penetration_max", s->preloadPenetration));
+  PetscCall(BoltJSONReal(j, "multiplier_change", s->preloadChange));
+  PetscCall(BoltJSONReal(j, "traction_normal_min", s->tractionStats[0]));
+  PetscCall(BoltJSONReal(j, "traction_normal_max", s->tractionStats[1]));
+  PetscCall(BoltJSONReal(j, "traction_tangential_max", s->tractionStats[2]));
+  PetscCall(BoltJSONInt(j, "active_points", s->preloadActive));
+  PetscCall(BoltJSONBeginObject(j, "normal_force_per_pair"));
+  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONReal(j, contact->pairName[p], s->preloadForce[p]));
+  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONBeginObject(j, "fom"));
+  PetscCall(SummaryNewmarkRun(j, nm, PETSC_TRUE));
+  PetscCall(BoltJSONEndObject(j));
+  PetscFunctionReturn(0);
+}
+
+/* The reduced model (offline figures) and its run; against the FOM's run if there is one. */
+static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
+{
+  const BoltROM *rom = s->rom;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltJSONBeginObject(j, "rom"));
+  PetscCall(BoltJSONInt(j, "dim", rom->n));
+  PetscCall(BoltJSONInt(j, "order", rom->order));
+  PetscCall(BoltJSONReal(j, "s0", rom->s0));
+  PetscCall(BoltJSONInt(j, "inputs", rom->ninputs));
+  PetscCall(BoltJSONInt(j, "n_ccm", rom->nCCM));
+  PetscCall(BoltJSONInt(j, "n_jim", rom->nJIM));
+  PetscCall(BoltJSONString(j, "source", rom->fromFile ? "file" : "built"));
+  PetscCall(BoltJSONReal(j, "offline_s", rom->tOffline));
+  PetscCall(BoltJSONReal(j, "offline_inputs_s", rom->tInputs));
+  PetscCall(BoltJSONReal(j, "offline_basis_s", rom->tBasis));
+  PetscCall(BoltJSONReal(j, "offline_factor_s", rom->tFactor));
+  PetscCall(BoltJSONReal(j, "offline_solves_s", rom->tSolve));
+  PetscCall(BoltJSONReal(j, "offline_orth_s", rom->tOrth));
+  PetscCall(BoltJSONReal(j, "offline_interface_s", rom->tInterface));
+  PetscCall(BoltJSONReal(j, "offline_projection_s", rom->tProject));
+  PetscCall(BoltJSONString(j, "contact_law", rom->augment ? "augmented" : "penalty"));
+  PetscCall(BoltJSONInt(j, "preload_state", rom->preloadState));
+  PetscCall(BoltJSONReal(j, "contact_penalty_scale", rom->penaltyScale));
+  PetscCall(BoltJSONReal(j, "contact_band_scale", rom->bandScale));
+  PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
+  PetscCall(SummaryNewmarkRun(j, s->romRun, PETSC_FALSE));
+  if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));
+  if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(j, "orthogonality", rom->orthogonality));
+  PetscCall(BoltJSONEndObject(j));
+  if (s->fomRun) {
+    PetscCall(BoltJSONReal(j, "speedup", s->fomRun->tOnline / s->romRun->tOnline));
+    PetscCall(BoltJSONBeginObject(j, "errors"));
+    PetscCall(BoltJSONBeginObject(j, s->loads->probeGroup));
+    PetscCall(BoltJSONReal(j, "e_L2", s->errL2));
+    PetscCall(BoltJSONReal(j, "e_mean", s->errMean));
+    PetscCall(BoltJSONEndObject(j));
+    PetscCall(BoltJSONEndObject(j));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Writes the summary to path (rank 0, under a temporary name renamed when complete). */
+PetscErrorCode BoltSummaryWrite(MPI_Comm comm, const char path[], const BoltSummary *s)
+{
+  BoltJSON    j;
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(BoltJSONOpen(comm, path, &j));
+  PetscCall(SummaryModel(&j, s, size));
+  PetscCall(SummaryTied(&j, s));
+  if (s->fomRun) PetscCall(SummaryFOM(&j, s));
+  if (s->rom) PetscCall(SummaryROM(&j, s));
+  PetscCall(BoltJSONReal(&j, "setup_s", s->tSetUp));
+  PetscCall(BoltJSONClose(&j));
+  PetscFunctionReturn(0);
+}
+
+/* The fields and histories of the run: <dir>/<name>.h5 and .xmf (ParaView). */
+PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], const char name[])
+{
+  BoltMesh    *mesh  = s->mesh;
+  BoltLoadSet *loads = s->loads;
+  BoltNewmark *fom = s->fomRun, *rom = s->romRun;
+  BoltOutput   h5;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltOutputOpen(mesh, dir, name, &h5));
+  if (s->staticSolve) PetscCall(BoltOutputVertexField(&h5, mesh, s->u, "displacement"));
+  PetscCall(BoltOutputVertexField(&h5, mesh, loads->load, "load"));
+  if (loads->hasPreload) PetscCall(BoltOutputVertexField(&h5, mesh, loads->preload, "preload"));
+  if (fom) {
+    PetscCall(BoltOutputVertexField(&h5, mesh, fom->q, "fom_final_displacement"));
+    PetscCall(BoltOutputSeries(&h5, "/fom", "time", fom->nsteps + 1, fom->probeTime));
+    PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fom->nsteps + 1, fom->probeValue));
+    PetscCall(BoltOutputSeries(&h5, "/fom", "energy", fom->nsteps + 1, fom->energy));
+    if (fom->nsnap) PetscCall(BoltOutputSnapshots(&h5, mesh, fom->nsnap, fom->snap, fom->snapTime));
+  }
+  if (rom) {
+    PetscCall(BoltOutputSeries(&h5, "/rom", "time", rom->nsteps + 1, rom->probeTime));
+    PetscCall(BoltOutputSeries(&h5, "/rom", "probe", rom->nsteps + 1, rom->probeValue));
+    PetscCall(BoltOutputSeries(&h5, "/rom", "energy", rom->nsteps + 1, rom->energy));
+  }
+  if (s->x) {
+    PetscCall(BoltOutputVertexField(&h5, mesh, s->x, "x"));
+    PetscCall(BoltOutputVertexField(&h5, mesh, s->Kx, "Kx"));
+    PetscCall(BoltOutputVertexField(&h5, mesh, s->Mx, "Mx"));
+  }
+  PetscCall(BoltOutputClose(&h5, mesh));
+  PetscCall(PetscPrintf(mesh->comm, "Wrote %s/%s.h5 and %s/%s.xmf (open the .xmf in ParaView)\n", dir, name, dir, name));
+  PetscFunctionReturn(0);
+}
