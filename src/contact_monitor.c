@@ -10,9 +10,9 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *d, PetscInt outer, PetscInt inn
 {
   BoltContactState *s = d->op->state;
   BoltContactSet   *c = s->set;
-  const PetscInt  P = BOLTROM_MAX_PAIRS;
-  PetscInt        cnt[2 * BOLTROM_MAX_PAIRS];
-  PetscReal       ctr[3 * BOLTROM_MAX_PAIRS], rmin[BOLTROM_MAX_PAIRS], rmax[2 * BOLTROM_MAX_PAIRS];
+  const PetscInt    P = BOLTROM_MAX_PAIRS;
+  PetscInt          cnt[2 * BOLTROM_MAX_PAIRS];
+  PetscReal         ctr[3 * BOLTROM_MAX_PAIRS], rmin[BOLTROM_MAX_PAIRS], rmax[2 * BOLTROM_MAX_PAIRS];
 
   PetscFunctionBeginUser;
   for (PetscInt p = 0; p < 2 * P; p++) {
@@ -57,8 +57,8 @@ PetscErrorCode BoltContactMonitorTension(BoltDual *d)
 {
   BoltContactState *s = d->op->state;
   BoltContactSet   *c = s->set;
-  PetscInt        cnt[2] = {0, 0};
-  PetscReal      *ts, mx[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, mn = PETSC_MAX_REAL;
+  PetscInt          cnt[2] = {0, 0};
+  PetscReal        *ts, mx[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, mn = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(4 * c->nelem + 1, &ts));

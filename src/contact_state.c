@@ -140,7 +140,7 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *s)
 PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange, PetscReal *maxPenetration)
 {
   BoltContactSet *c = s->set;
-  PetscReal loc[3] = {0, 0, 0}, glob[3];
+  PetscReal       loc[3] = {0, 0, 0}, glob[3];
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
@@ -170,8 +170,8 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
 PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchanged, PetscBool *cycling)
 {
   BoltContactSet *c = s->set;
-  PetscInt   loc[3] = {0, 0, 0}, glob[3];
-  PetscReal *tnOpen = NULL; /* the normal traction that decides whether a closed point opens */
+  PetscInt        loc[3] = {0, 0, 0}, glob[3];
+  PetscReal      *tnOpen = NULL; /* the normal traction that decides whether a closed point opens */
 
   PetscFunctionBeginUser;
   /* the traction of a closed point: the multipliers (converged) with augmentation, the trial
@@ -235,7 +235,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
 PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool active[])
 {
   BoltContactSet *c = s->set;
-  PetscInt nact = 0;
+  PetscInt        nact = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
@@ -254,7 +254,7 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool ac
 PetscErrorCode BoltContactStateCloseCycle(BoltContactState *s, PetscInt *nclosed)
 {
   BoltContactSet *c = s->set;
-  PetscInt loc[2] = {0, 0}, glob[2];
+  PetscInt        loc[2] = {0, 0}, glob[2];
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
@@ -308,6 +308,7 @@ PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
 static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt gp, PetscReal t[3])
 {
   BoltContactSet *c = s->set;
+
   if (!s->active[gp]) {
     t[0] = t[1] = t[2] = 0;
     return;
@@ -338,7 +339,7 @@ PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *s, PetscReal
 PetscErrorCode BoltContactStateTractionStats(BoltContactState *s, PetscReal *tnMin, PetscReal *tnMax, PetscReal *ttMax)
 {
   BoltContactSet *c = s->set;
-  PetscReal mn = PETSC_MAX_REAL, mx = -PETSC_MAX_REAL, tt = 0;
+  PetscReal       mn = PETSC_MAX_REAL, mx = -PETSC_MAX_REAL, tt = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
@@ -362,7 +363,7 @@ PetscErrorCode BoltContactStateTractionStats(BoltContactState *s, PetscReal *tnM
 PetscErrorCode BoltContactStateDot(BoltContactState *s, const PetscReal x[], const PetscReal y[], PetscReal *dot)
 {
   BoltContactSet *c = s->set;
-  PetscReal loc = 0;
+  PetscReal       loc = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
@@ -375,7 +376,7 @@ PetscErrorCode BoltContactStateDot(BoltContactState *s, const PetscReal x[], con
 PetscErrorCode BoltContactStatePenetration(BoltContactState *s, PetscReal g[], PetscReal *pen)
 {
   BoltContactSet *c = s->set;
-  PetscReal loc = 0;
+  PetscReal       loc = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {

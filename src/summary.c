@@ -41,6 +41,19 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
   PetscFunctionReturn(0);
 }
 
+/* An object of one value per named pair or part: the integers vi, or else the reals vr. */
+static PetscErrorCode SummaryNamed(BoltJSON *j, const char key[], PetscInt n, const char names[][BOLTROM_NAME_LEN], const PetscInt vi[], const PetscReal vr[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltJSONBeginObject(j, key));
+  for (PetscInt p = 0; p < n; p++) {
+    if (vi) PetscCall(BoltJSONInt(j, names[p], vi[p]));
+    else PetscCall(BoltJSONReal(j, names[p], vr[p]));
+  }
+  PetscCall(BoltJSONEndObject(j));
+  PetscFunctionReturn(0);
+}
+
 /* The model: sizes, partition, and per pair and per part figures. */
 static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIInt size)
 {
@@ -59,24 +72,12 @@ static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIIn
   PetscCall(BoltJSONInt(j, "dofs", 3 * mesh->nverticesGlobal));
   PetscCall(BoltJSONInt(j, "free_dofs", mesh->ndofsFree));
   PetscCall(BoltJSONInt(j, "contact_dofs", contact->contactDofs));
-  PetscCall(BoltJSONBeginObject(j, "contact_dofs_per_pair"));
-  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONInt(j, contact->pairName[p], contact->contactDofsPerPair[p]));
-  PetscCall(BoltJSONEndObject(j));
-  PetscCall(BoltJSONBeginObject(j, "contact_elements_per_pair"));
-  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONInt(j, contact->pairName[p], contact->elementsPerPair[p]));
-  PetscCall(BoltJSONEndObject(j));
-  PetscCall(BoltJSONBeginObject(j, "contact_area_per_pair"));
-  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONReal(j, contact->pairName[p], contact->areaPerPair[p]));
-  PetscCall(BoltJSONEndObject(j));
-  PetscCall(BoltJSONBeginObject(j, "elements_per_part"));
-  for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONInt(j, mesh->partName[p], asmb->elementsPerPart[p]));
-  PetscCall(BoltJSONEndObject(j));
-  PetscCall(BoltJSONBeginObject(j, "mass_per_part"));
-  for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONReal(j, mesh->partName[p], asmb->massPerPart[p]));
-  PetscCall(BoltJSONEndObject(j));
-  PetscCall(BoltJSONBeginObject(j, "volume_per_part"));
-  for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONReal(j, mesh->partName[p], asmb->volumePerPart[p]));
-  PetscCall(BoltJSONEndObject(j));
+  PetscCall(SummaryNamed(j, "contact_dofs_per_pair", contact->npairs, contact->pairName, contact->contactDofsPerPair, NULL));
+  PetscCall(SummaryNamed(j, "contact_elements_per_pair", contact->npairs, contact->pairName, contact->elementsPerPair, NULL));
+  PetscCall(SummaryNamed(j, "contact_area_per_pair", contact->npairs, contact->pairName, NULL, contact->areaPerPair));
+  PetscCall(SummaryNamed(j, "elements_per_part", mesh->nparts, mesh->partName, asmb->elementsPerPart, NULL));
+  PetscCall(SummaryNamed(j, "mass_per_part", mesh->nparts, mesh->partName, NULL, asmb->massPerPart));
+  PetscCall(SummaryNamed(j, "volume_per_part", mesh->nparts, mesh->partName, NULL, asmb->volumePerPart));
   PetscCall(BoltJSONBeginObject(j, "material_per_part"));
   for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONString(j, mesh->partName[p], mesh->materials.mat[mesh->partMaterial[p]].name));
   PetscCall(BoltJSONEndObject(j));
@@ -105,11 +106,7 @@ static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
     PetscCall(BoltJSONReal(j, "seconds", s->tModal));
     PetscCall(BoltJSONEndObject(j));
   }
-  if (s->checkRigid) {
-    PetscCall(BoltJSONBeginObject(j, "rigid_residual_per_part"));
-    for (PetscInt p = 0; p < s->mesh->nparts; p++) PetscCall(BoltJSONReal(j, s->mesh->partName[p], s->rigid[p]));
-    PetscCall(BoltJSONEndObject(j));
-  }
+  if (s->checkRigid) PetscCall(SummaryNamed(j, "rigid_residual_per_part", s->mesh->nparts, s->mesh->partName, NULL, s->rigid));
   PetscFunctionReturn(0);
 }
 
@@ -133,9 +130,7 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONReal(j, "traction_normal_max", s->tractionStats[1]));
   PetscCall(BoltJSONReal(j, "traction_tangential_max", s->tractionStats[2]));
   PetscCall(BoltJSONInt(j, "active_points", s->preloadActive));
-  PetscCall(BoltJSONBeginObject(j, "normal_force_per_pair"));
-  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(BoltJSONReal(j, contact->pairName[p], s->preloadForce[p]));
-  PetscCall(BoltJSONEndObject(j));
+  PetscCall(SummaryNamed(j, "normal_force_per_pair", contact->npairs, contact->pairName, NULL, s->preloadForce));
   PetscCall(BoltJSONEndObject(j));
   PetscCall(BoltJSONBeginObject(j, "fom"));
   PetscCall(SummaryNewmarkRun(j, nm, PETSC_TRUE));
@@ -157,14 +152,11 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONInt(j, "n_ccm", rom->nCCM));
   PetscCall(BoltJSONInt(j, "n_jim", rom->nJIM));
   PetscCall(BoltJSONString(j, "source", rom->fromFile ? "file" : "built"));
-  PetscCall(BoltJSONReal(j, "offline_s", rom->tOffline));
-  PetscCall(BoltJSONReal(j, "offline_inputs_s", rom->tInputs));
-  PetscCall(BoltJSONReal(j, "offline_basis_s", rom->tBasis));
-  PetscCall(BoltJSONReal(j, "offline_factor_s", rom->tFactor));
-  PetscCall(BoltJSONReal(j, "offline_solves_s", rom->tSolve));
-  PetscCall(BoltJSONReal(j, "offline_orth_s", rom->tOrth));
-  PetscCall(BoltJSONReal(j, "offline_interface_s", rom->tInterface));
-  PetscCall(BoltJSONReal(j, "offline_projection_s", rom->tProject));
+  { /* the offline phase and its parts [s] */
+    const char     *key[] = {"offline_s", "offline_inputs_s", "offline_basis_s", "offline_factor_s", "offline_solves_s", "offline_orth_s", "offline_interface_s", "offline_projection_s"};
+    const PetscReal t[]   = {rom->tOffline, rom->tInputs, rom->tBasis, rom->tFactor, rom->tSolve, rom->tOrth, rom->tInterface, rom->tProject};
+    for (PetscInt k = 0; k < 8; k++) PetscCall(BoltJSONReal(j, key[k], t[k]));
+  }
   PetscCall(BoltJSONString(j, "contact_law", rom->augment ? "augmented" : "penalty"));
   PetscCall(BoltJSONInt(j, "preload_state", rom->preloadState));
   PetscCall(BoltJSONReal(j, "contact_penalty_scale", rom->penaltyScale));
