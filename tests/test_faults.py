@@ -37,7 +37,7 @@ def restart_runs(joint_small, tmp_path_factory):
     mesh, _ = joint_small
     tmp = tmp_path_factory.mktemp("restart")
     # every run reads the same ROM file: a ROM used as built differs from the same ROM read back at
-    # round-off level (5e-14 of the probe), which the near-hard penalty lifts to 1e-11 in the energy
+    # round-off level, which the near-hard penalty lifts in the energy
     run_boltrom(scene(mesh, tmp, "build", "1e-4"))
     run_boltrom(scene(mesh, tmp, "full", "4e-3"))
     run_boltrom(scene(mesh, tmp, "part", "2e-3", "-checkpoint_every", "10"))
