@@ -40,7 +40,7 @@ PetscErrorCode BoltOperatorView(BoltOperator *op, PetscViewer viewer)
 
   PetscFunctionBeginUser;
   PetscCall(MatGetSize(op->K, &n, NULL));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%s operator: %" PetscInt_FMT " unknowns, contact law %s (%s), solver %s\n", op->name, n, op->state->lawType, op->state->augment ? "augmented Lagrangian" : "penalty", op->solverType));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s operator: %" PetscInt_FMT " unknowns, contact law %s (%s), direct solver %s\n", op->name, n, op->state->lawType, op->state->augment ? "augmented Lagrangian" : "penalty", op->solverType));
   if (op->ops.view) PetscCall((*op->ops.view)(op, viewer));
   PetscFunctionReturn(0);
 }

@@ -44,6 +44,7 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
 static PetscErrorCode BoltRunNewmarkCreate(BoltRun *r, BoltOperator *op, BoltNewmark **nm)
 {
   PetscFunctionBeginUser;
+  PetscCall(BoltOperatorView(op, PETSC_VIEWER_STDOUT_(r->comm)));
   PetscCall(BoltNewmarkCreate(op, nm));
   PetscCall(PetscSNPrintf((*nm)->checkpointBase, sizeof((*nm)->checkpointBase), "%s/%s", r->opt.outputDir, r->opt.outputName));
   PetscCall(BoltNewmarkSetFromOptions(*nm));
