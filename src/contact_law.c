@@ -29,12 +29,21 @@ PetscErrorCode BoltContactLawRegister(const char name[], PetscErrorCode (*create
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode BoltContactLawFinalize(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListDestroy(&BoltContactLawList));
+  BoltContactLawRegistered = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltContactLawRegisterAll(void)
 {
   PetscFunctionBeginUser;
   if (BoltContactLawRegistered) PetscFunctionReturn(0);
   BoltContactLawRegistered = PETSC_TRUE;
   PetscCall(BoltContactLawRegister("stick", BoltContactLawCreate_Stick));
+  PetscCall(PetscRegisterFinalize(BoltContactLawFinalize));
   PetscFunctionReturn(0);
 }
 

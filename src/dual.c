@@ -238,15 +238,30 @@ PetscErrorCode BoltContactMonitorCG(BoltDual *d, Vec rhs0, Vec q, PetscInt inner
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode BoltDualInnerFinalize(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListDestroy(&BoltDualInnerList));
+  PetscFunctionReturn(0);
+}
+
+/* The inner solvers that come with boltrom; others register beside them with BoltDualInnerRegister. */
+static PetscErrorCode BoltDualInnerRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  if (BoltDualInnerList) PetscFunctionReturn(0);
+  PetscCall(BoltDualInnerRegister("uzawa", BoltDualInnerUzawa));
+  PetscCall(BoltDualInnerRegister("cg", BoltDualInnerCG));
+  PetscCall(PetscRegisterFinalize(BoltDualInnerFinalize));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltDualCreate(BoltOperator *op, BoltDual **dp)
 {
   BoltDual *d;
 
   PetscFunctionBeginUser;
-  if (!BoltDualInnerList) {
-    PetscCall(BoltDualInnerRegister("uzawa", BoltDualInnerUzawa));
-    PetscCall(BoltDualInnerRegister("cg", BoltDualInnerCG));
-  }
+  PetscCall(BoltDualInnerRegisterAll());
   PetscCall(PetscNew(&d));
   d->op             = op;
   d->maxOuter       = 20;
