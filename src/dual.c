@@ -452,7 +452,8 @@ PetscErrorCode BoltDualResetCounters(BoltDual *d)
 PetscErrorCode BoltDualView(BoltDual *d, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%s contact loop (%s inner): %" PetscInt_FMT " factorisations, %" PetscInt_FMT " solves, outer %" PetscInt_FMT " (max %" PetscInt_FMT "), inner %" PetscInt_FMT " (max %" PetscInt_FMT "/solve)\n", d->op->name, d->innerType, d->factorizations, d->solves, d->outerTotal, d->outerMax, d->innerTotal, d->innerMax));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact loop (%s inner): %" PetscInt_FMT " factorisations, %" PetscInt_FMT " solves, outer %" PetscInt_FMT " (max %" PetscInt_FMT "), inner %" PetscInt_FMT " (max %" PetscInt_FMT "/solve)\n", d->innerType, d->factorizations, d->solves, d->outerTotal, d->outerMax, d->innerTotal, d->innerMax));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  phases: contact stiffness %.3f s, displacements %.3f s, contact forces %.3f s\n", (double)d->tContactStiffness, (double)d->tDisplacements, (double)d->tContactForces));
   PetscFunctionReturn(0);
 }
 

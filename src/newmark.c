@@ -207,8 +207,8 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
 PetscErrorCode BoltNewmarkView(BoltNewmark *nm, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%s Newmark (beta %g, gamma %g), dt %g s, %" PetscInt_FMT " steps: %" PetscInt_FMT " factorisations, %" PetscInt_FMT " solves, outer %" PetscInt_FMT " (max %" PetscInt_FMT "), inner %" PetscInt_FMT " (max %" PetscInt_FMT "/step)\n", nm->op->name, (double)nm->beta, (double)nm->gamma, (double)nm->dt, nm->nsteps, nm->dual->factorizations, nm->dual->solves, nm->dual->outerTotal, nm->dual->outerMax, nm->dual->innerTotal, nm->dual->innerMax));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  online %.3f s: contact stiffness %.3f s, displacements %.3f s, contact forces %.3f s\n", (double)nm->tOnline, (double)nm->dual->tContactStiffness, (double)nm->dual->tDisplacements, (double)nm->dual->tContactForces));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s Newmark (beta %g, gamma %g), dt %g s, %" PetscInt_FMT " steps, online %.3f s\n", nm->op->name, (double)nm->beta, (double)nm->gamma, (double)nm->dt, nm->nsteps, (double)nm->tOnline));
+  PetscCall(BoltDualView(nm->dual, viewer));
   PetscFunctionReturn(0);
 }
 
