@@ -150,7 +150,6 @@ typedef struct {
   PetscInt            nlocal;         /* length of the local contact vector */
   PetscInt           *localGlobal;    /* its global DOFs */
   PetscInt            ngpGlobal;
-  Vec                 layout;         /* a global displacement vector: the layout of K_c */
   VecScatter          scatter;        /* global displacement -> uc */
   PetscReal          *nodalArea;      /* nlocal: sum w N n over all Gauss points (vector area of the node) */
   /* scratch */
@@ -345,7 +344,6 @@ PetscErrorCode BoltDualDestroy(BoltDual **);
 /* contact_monitor.c: diagnostics of the loop (-contact_monitor) */
 PetscErrorCode BoltContactMonitorOuter(BoltDual *, PetscInt, PetscInt, PetscInt, PetscBool);
 PetscErrorCode BoltContactMonitorTension(BoltDual *);
-PetscErrorCode BoltContactMonitorCG(BoltDual *, Vec, Vec, PetscInt, PetscReal, PetscReal, PetscReal, const PetscReal[], PetscReal, PetscReal[]);
 
 /* ------------------------------------------------------------------ newmark.c */
 typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1 } BoltLoadHistory;

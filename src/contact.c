@@ -365,7 +365,6 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
   PetscCall(VecDestroy(&(*cs)->fGlobal));
   PetscCall(PetscFree3((*cs)->nodalArea, (*cs)->nodalForce, (*cs)->tau));
   PetscCall(VecScatterDestroy(&(*cs)->scatter));
-  PetscCall(VecDestroy(&(*cs)->layout));
   PetscCall(PetscFree(*cs));
   PetscFunctionReturn(0);
 }
@@ -461,7 +460,6 @@ PetscErrorCode BoltContactSetSetUpQuadrature(BoltContactSet *c, Vec layout)
   PetscCall(ISDestroy(&isGlobal));
   PetscCall(VecDuplicate(c->uc, &c->fcWork));
   PetscCall(VecDuplicate(layout, &c->fGlobal));
-  PetscCall(VecDuplicate(layout, &c->layout));
   PetscCall(PetscMalloc3(n + 1, &c->nodalArea, n + 1, &c->nodalForce, 12 * ne + 1, &c->tau));
   PetscCall(BoltContactSetNodalSum(c, c->gpNormal, c->nodalArea));
   {
@@ -478,8 +476,8 @@ PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *c, Mat *Kc)
   PetscInt ne = c->nelem, *ci, *cj, ncoo = 576 * ne, m, M;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(c->layout, &m));
-  PetscCall(VecGetSize(c->layout, &M));
+  PetscCall(VecGetLocalSize(c->fGlobal, &m)); /* a vector of the global layout */
+  PetscCall(VecGetSize(c->fGlobal, &M));
   PetscCall(MatCreate(c->mesh->comm, Kc));
   PetscCall(MatSetSizes(*Kc, m, m, M, M));
   PetscCall(MatSetType(*Kc, MATAIJ));

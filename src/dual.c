@@ -131,6 +131,8 @@ static PetscErrorCode BoltDualInnerUzawa(BoltDual *d, Vec rhs0, Vec q, PetscInt 
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode BoltDualMonitorCG(BoltDual *, Vec, Vec, PetscInt, PetscReal, PetscReal, PetscReal, const PetscReal[], PetscReal, PetscReal[]);
+
 /* Inner loop by conjugate gradients on the multipliers. For a fixed active set the gaps are
    affine in the multipliers, g(lambda) = g(0) - A lambda with A = B K_eff^-1 B' W symmetric
    in the area-weighted product, and the augmentations are Richardson iterations towards
@@ -187,7 +189,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
     PetscCall(BoltContactStatePenetration(s, r, &pen));
     d->lastChange      = rel;
     d->lastPenetration = pen;
-    if (d->monitor > 1) PetscCall(BoltContactMonitorCG(d, rhs0, q, inner, rel, pen, alpha, r, rr0, Ap));
+    if (d->monitor > 1) PetscCall(BoltDualMonitorCG(d, rhs0, q, inner, rel, pen, alpha, r, rr0, Ap));
     /* a reduced model may have fewer DOFs than contact constraints: there the penetration
        cannot vanish everywhere, and the loop ends when the gaps (the dual residual) have dropped
        by the tolerance, or the reduced forces stop changing */
@@ -210,7 +212,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
 
 /* The true residual of the CG iteration for -contact_monitor 2: the gaps of q and of a fresh
    solve with the current multipliers (their difference is the drift of the recurrence). */
-PetscErrorCode BoltContactMonitorCG(BoltDual *d, Vec rhs0, Vec q, PetscInt inner, PetscReal rel, PetscReal pen, PetscReal alpha, const PetscReal r[], PetscReal rr0, PetscReal work[])
+static PetscErrorCode BoltDualMonitorCG(BoltDual *d, Vec rhs0, Vec q, PetscInt inner, PetscReal rel, PetscReal pen, PetscReal alpha, const PetscReal r[], PetscReal rr0, PetscReal work[])
 {
   BoltContactState *s  = d->op->state;
   PetscInt          ng = 12 * s->set->nelem;

@@ -116,14 +116,14 @@ PetscErrorCode BoltVerifyFields(BoltMesh *mesh, Mat K, Mat M, Vec layout, PetscI
 }
 
 /* Per part, max over the six rigid motions r of |K_p r| / (|K_p| |r|): zero up to round-off for a
-   stiffness that holds no spurious constraint. Needs the free-free model (-clamp false). */
+   stiffness that holds no spurious constraint. Needs the free-free model (-clamp false), which
+   the run checks before its set-up. */
 PetscErrorCode BoltCheckRigid(BoltAssembler *asmb, Vec layout, PetscReal rigid[])
 {
   BoltMesh *mesh = asmb->mesh;
   Vec       x, Kx;
 
   PetscFunctionBeginUser;
-  PetscCheck(!mesh->clamp, mesh->comm, PETSC_ERR_USER_INPUT, "-check_rigid needs the free-free model: add -clamp false");
   PetscCall(VecDuplicate(layout, &x));
   PetscCall(VecDuplicate(layout, &Kx));
   for (PetscInt p = 0; p < mesh->nparts; p++) {
