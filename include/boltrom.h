@@ -109,12 +109,17 @@ typedef struct {
 } BoltContactElement;
 
 enum { BOLT_OPEN_NODAL = 0, BOLT_OPEN_GAUSS = 1 };
+enum { BOLT_QUADRATURE_GAUSS = 0, BOLT_QUADRATURE_NODAL = 1 };
 
-/* The contact law at one Gauss point (contact_law.c), a registered type: the trial traction of
-   a multiplier and a gap under the pair's penalties. A law is a table of such point functions,
-   so that a strict law or a frictional one adds its own entries beside it. */
+/* The contact law at a contact point (contact_law.c), a registered type: the trial traction of
+   a multiplier and a gap under the pair's penalties, and what the law needs of the geometry and
+   of the loop. A frictional law adds its own entries beside these. */
 typedef struct {
   void (*traction)(const PetscReal lambda[3], const PetscReal g[3], const PetscReal n[3], PetscReal epsN, PetscReal epsT, PetscReal t[3]);
+  PetscBool strict;        /* complementarity at every node pair (nodal quadrature, no band), solved
+                              by the active-set loop; else the banded Gauss-point law of the paper */
+  PetscReal penaltyFactor; /* default -contact_penalty_factor: a physical penalty (banded law) or
+                              the augmentation parameter of the active-set loop (strict law) */
 } BoltContactLaw;
 extern PetscFunctionList BoltContactLawList;
 PetscErrorCode BoltContactLawRegister(const char[], PetscErrorCode (*)(BoltContactLaw *));
@@ -145,6 +150,9 @@ typedef struct {
   PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
   PetscInt            openTest;       /* BOLT_OPEN_NODAL: a closed point opens on its traction smoothed
                                          through the nodes; BOLT_OPEN_GAUSS: on its own multiplier */
+  PetscInt            quadrature;     /* BOLT_QUADRATURE_GAUSS (2x2) or _NODAL (points at the nodes) */
+  PetscReal           hMin;           /* shortest edge of a contact face (global) */
+  PetscReal           gapTolerance;   /* default penetration tolerance of the strict law [m]: 1e-10 hMin */
   PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
   PetscInt           *elemLocal;      /* 24 per element: index in the local contact vector, -1 if clamped */
   PetscInt            nlocal;         /* length of the local contact vector */
@@ -171,6 +179,7 @@ typedef struct {
   PetscReal       epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS], bandTraction[BOLTROM_MAX_PAIRS];
   PetscReal      *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
   PetscBool      *active, *activeOld, *activeOlder;
+  PetscBool      *released;       /* strict law: the point has opened, and slides (normal contact only) when closed */
   PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
   PetscBool      *dirty;          /* element whose activity or penalty changed since its Ke was built */
   PetscReal      *Ke;             /* 576 per element: stiffness of its active Gauss points (made when first needed) */
@@ -192,6 +201,7 @@ PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
 PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[]);
 void           BoltContactElementForces(BoltContactSet *, PetscInt, const PetscReal[], PetscReal[12]);
 PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, const PetscReal[], PetscReal[]);
+PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *, PetscInt, PetscReal, PetscReal, const PetscBool[], const PetscBool[], PetscReal[576]);
 PetscErrorCode BoltContactSetView(BoltContactSet *, PetscViewer);
 PetscErrorCode BoltContactSetDestroy(BoltContactSet **);
 
@@ -211,10 +221,16 @@ PetscErrorCode BoltContactStateDot(BoltContactState *, const PetscReal[], const 
 PetscErrorCode BoltContactStatePenetration(BoltContactState *, PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStateCountActive(BoltContactState *);
 PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
-#define BOLT_CONTACT_PACK 36 /* values per element of BoltContactStatePack */
+PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
+#define BOLT_CONTACT_PACK 40 /* values per element of BoltContactStatePack */
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
 PetscErrorCode BoltContactStateDestroy(BoltContactState **);
+/* The tangential penalty at point gp of a pair: none where the point slides (released). */
+static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)
+{
+  return s->released[gp] ? 0 : s->epsT[pair];
+}
 
 /* ------------------------------------------------------------------ loads.c */
 typedef struct {
@@ -308,6 +324,7 @@ struct BoltDual_s {
   BoltDualInnerFn inner;
   PetscInt        maxOuter, maxInner;
   PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
+  PetscBool       tolPenetrationSet;         /* given as an option (else the law's default) */
   PetscBool       warmStart;      /* keep the multipliers across outer iterations and steps */
   PetscBool       closeCycles;    /* anti-cycling (-contact_cycle_close): once the set cycles or is slow to settle, points only close */
   PetscBool       continueOnFailure;
@@ -329,6 +346,8 @@ struct BoltDual_s {
   PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
   PetscReal       tContactStiffness, tDisplacements, tContactForces;
   PetscReal       lastChange, lastPenetration; /* of the last inner iteration */
+  /* strict law: the worst converged state so far (BoltContactStateComplementarity) */
+  PetscReal       worstPenetration, worstTension, worstCompression, worstProduct;
 };
 
 PetscErrorCode BoltDualCreate(BoltOperator *, BoltDual **);

@@ -49,6 +49,16 @@ PetscErrorCode QuadPairPenaltyStiffnessActive(const PetscReal Xa[12], PetscReal 
    surface Jacobian), unit normals n[3*gp + k] (right-hand rule of the node order). */
 PetscErrorCode QuadGaussPoints(const PetscReal Xa[12], PetscReal N[16], PetscReal w[4], PetscReal n[12]);
 
+/* Nodal quadrature of the face (weight 1 at each corner of the reference square): the points
+   sit at the nodes, so N[4*a + b] = delta_ab, w[a] is the surface Jacobian at node a and n the
+   unit normal there. On a pair meshed node to node each point then constrains one node pair. */
+PetscErrorCode QuadNodalPoints(const PetscReal Xa[12], PetscReal N[16], PetscReal w[4], PetscReal n[12]);
+
+/* The pair's 24x24 penalty matrix from given point data (shape values, weights, normals, as
+   QuadGaussPoints or QuadNodalPoints give them), active points only, with no tangential
+   penalty at the points flagged in released (may be NULL). */
+PetscErrorCode QuadPairPenaltyStiffnessPoints(const PetscReal N[16], const PetscReal w[4], const PetscReal n[12], PetscReal epsN, PetscReal epsT, const PetscBool active[4], const PetscBool released[4], PetscReal Kc[576]);
+
 /* Area of the bilinear quad face (2x2 Gauss). */
 PetscErrorCode QuadArea(const PetscReal X[12], PetscReal *area);
 

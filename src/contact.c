@@ -11,10 +11,9 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   c->mesh           = mesh;
-  c->penaltyFactor  = 200.0;
   c->augment        = PETSC_TRUE;
   PetscCall(PetscStrncpy(c->lawType, "stick", sizeof(c->lawType)));
-  c->activationGap  = 1e-7; /* 1 % of the penalty-only penetration under the preload tractions */
+  c->activationGap  = -1; /* the law's default: SetFromOptions and SetUp fill it in */
   c->matchTolerance = 1e-6;
   *cs               = c;
   PetscFunctionReturn(0);
@@ -22,24 +21,31 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
 
 PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
 {
+  BoltContactLaw law;
+  const char    *quad[] = {"gauss", "nodal"};
+  PetscBool      set;
+
   PetscFunctionBeginUser;
   PetscCall(BoltContactLawRegisterAll());
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
-  PetscCall(PetscOptionsFList("-contact_law", "Contact law at a point (stick: augmented Lagrangian, stick with elastic slip)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
-  PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m]", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
+  PetscCall(PetscOptionsFList("-contact_law", "Contact law: strict (one-sided contact at every node pair, closed pairs stick; active-set loop) or stick (the paper's: Gauss points, opening band, penalty 200 E/m)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
+  PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, &law)); /* an unknown law fails here, before any solve */
+  c->penaltyFactor = law.penaltyFactor;
+  c->quadrature    = law.strict ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
+  PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m] (default: the law's, strict 3e7, stick 200)", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
+  PetscCall(PetscOptionsEList("-contact_quadrature", "Contact points: nodal (one per node pair and face, the strict law's default) or gauss (2x2 per face pair, the stick law's)", NULL, quad, 2, quad[c->quadrature], &c->quadrature, NULL));
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
   {
     const char *open[] = {"nodal", "gauss"};
-    PetscCall(PetscOptionsEList("-contact_open_test", "When a closed point opens: nodal (its normal traction smoothed through the nodes, nodal force / nodal area, is tensile beyond the band) or gauss (its own multiplier is)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
+    PetscCall(PetscOptionsEList("-contact_open_test", "Stick law: when a closed point opens: nodal (its normal traction smoothed through the nodes, nodal force / nodal area, is tensile beyond the band) or gauss (its own multiplier is)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
   }
-  PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m]", NULL, c->activationGap, &c->activationGap, NULL));
+  PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m] (default: strict 1e-10 x the shortest contact-face edge, stick 1e-7)", NULL, c->activationGap, &c->activationGap, &set));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscOptionsEnd();
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
-  {
-    BoltContactLaw law;
-    PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, &law)); /* an unknown law fails here, before any solve */
-  }
+  PetscCheck(!set || c->activationGap >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_activation_gap must be >= 0 (got %g)", (double)c->activationGap);
+  if (!set) c->activationGap = law.strict ? -1 : 1e-7; /* strict: set from the mesh in SetUp */
+  PetscCheck(!law.strict || c->augment, c->mesh->comm, PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
   PetscFunctionReturn(0);
 }
 
@@ -162,7 +168,11 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
   BoltMesh *m   = c->mesh;
   PetscInt  cap = 256;
 
+  PetscReal      hContact = PETSC_MAX_REAL;
+  BoltContactLaw law;
+
   PetscFunctionBeginUser;
+  PetscCall(BoltContactLawSetType(m->comm, c->lawType, &law));
   PetscCall(PetscLogEventBegin(boltLog.contactSetUp, 0, 0, 0, 0));
   PetscCall(BoltContactFindPairs(c));
   PetscCall(PetscMalloc1(cap, &c->elem));
@@ -229,6 +239,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
           for (PetscInt d = 0; d < 3; d++) h += PetscSqr(X[3 * ((a + 1) % 4) + d] - X[3 * a + d]);
           hmin = PetscMin(hmin, PetscSqrtReal(h));
         }
+        hContact = PetscMin(hContact, hmin);
         if (c->nelem == cap) {
           cap *= 2;
           PetscCall(PetscRealloc(sizeof(BoltContactElement) * cap, &c->elem));
@@ -312,11 +323,17 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
       PetscOptionsEnd();
       PetscCheck(factor > 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be > 0 (got %g)", opt, (double)factor);
       c->epsN[p] = c->epsT[p] = factor * PetscMin(Ea, Eb);
-      /* the opening band in traction is that of the default penalty (200 E/m) at the activation
-         gap, whatever the penalty: scaled with eps_N, a stiff penalty kept every point closed */
-      c->bandTraction[p] = 200.0 * PetscMin(Ea, Eb) * c->activationGap;
+      /* stick law: the opening band in traction is that of the default penalty (200 E/m) at the
+         activation gap, whatever the penalty: scaled with eps_N, a stiff penalty kept every point
+         closed. The strict law has none. */
+      c->bandTraction[p] = law.strict ? 1e-10 * PetscMin(Ea, Eb) : 200.0 * PetscMin(Ea, Eb) * c->activationGap;
     }
   }
+  PetscCall(MPIU_Allreduce(&hContact, &c->hMin, 1, MPIU_REAL, MPI_MIN, m->comm));
+  /* the strict law's tolerance on a gap: far below what the acceptance of a contact solution
+     asks (1e-9 of the element size), far above the round-off of the displacements */
+  c->gapTolerance = 1e-9 * (c->npairs ? c->hMin : 1.0);
+  if (c->activationGap < 0) c->activationGap = c->gapTolerance;
   PetscCall(PetscLogEventEnd(boltLog.contactSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -436,7 +453,10 @@ PetscErrorCode BoltContactSetSetUpQuadrature(BoltContactSet *c, Vec layout)
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc3(16 * ne + 1, &c->gpN, 4 * ne + 1, &c->gpW, 12 * ne + 1, &c->gpNormal));
   PetscCall(PetscMalloc1(24 * ne + 1, &c->elemLocal));
-  for (PetscInt e = 0; e < ne; e++) PetscCall(QuadGaussPoints(c->elem[e].Xa, &c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e]));
+  for (PetscInt e = 0; e < ne; e++) {
+    if (c->quadrature == BOLT_QUADRATURE_NODAL) PetscCall(QuadNodalPoints(c->elem[e].Xa, &c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e]));
+    else PetscCall(QuadGaussPoints(c->elem[e].Xa, &c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e]));
+  }
   /* local contact vector: the distinct global DOFs the local elements touch */
   PetscCall(PetscMalloc2(24 * ne + 1, &glob, 24 * ne + 1, &perm));
   for (PetscInt e = 0; e < ne; e++)
@@ -491,6 +511,20 @@ PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *c, Mat *Kc)
       }
   PetscCall(MatSetPreallocationCOO(*Kc, ncoo, ci, cj));
   PetscCall(PetscFree2(ci, cj));
+  PetscFunctionReturn(0);
+}
+
+/* Element e's 24x24 penalty matrix over its active points, in the set's quadrature, without the
+   tangential penalty at released points (the Gauss points' is computed as it always was, so
+   that the stick law's results keep their bits). */
+PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *c, PetscInt e, PetscReal epsN, PetscReal epsT, const PetscBool active[], const PetscBool released[], PetscReal Ke[576])
+{
+  PetscBool anyReleased = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  for (PetscInt q = 0; q < 4; q++) anyReleased = (PetscBool)(anyReleased || released[q]);
+  if (c->quadrature == BOLT_QUADRATURE_GAUSS && !anyReleased) PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, epsN, epsT, active, Ke));
+  else PetscCall(QuadPairPenaltyStiffnessPoints(&c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e], epsN, epsT, active, released, Ke));
   PetscFunctionReturn(0);
 }
 

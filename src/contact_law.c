@@ -1,4 +1,4 @@
-/* Contact laws at one Gauss point, registered by name (-contact_law) so that other laws plug in
+/* Contact laws at a contact point, registered by name (-contact_law) so that other laws plug in
    beside the first. Physics only: no loops, no solvers. */
 #include "boltrom.h"
 
@@ -15,10 +15,29 @@ static void StickTraction(const PetscReal lambda[3], const PetscReal g[3], const
   for (PetscInt k = 0; k < 3; k++) t[k] = lambda[k] + epsT * g[k] + (epsN - epsT) * gn * n[k];
 }
 
+/* stick (the paper's law): points are the 2x2 Gauss points of each face pair; a closed point
+   opens only when its traction is tensile beyond a band, an open one closes when it penetrates
+   beyond the activation gap; the penalty (200 E/m) is part of the model. */
 static PetscErrorCode BoltContactLawCreate_Stick(BoltContactLaw *law)
 {
   PetscFunctionBeginUser;
-  law->traction = StickTraction;
+  law->traction      = StickTraction;
+  law->strict        = PETSC_FALSE;
+  law->penaltyFactor = 200.0;
+  PetscFunctionReturn(0);
+}
+
+/* strict: one-sided contact at every matched node pair (nodal quadrature): gap.n >= 0, normal
+   traction <= 0 and their product zero, with no band; a closed pair sticks (its whole gap
+   vector is closed). The penalty is only the augmentation parameter of the active-set loop:
+   stiff (3e7 E/m), so that one solve closes a step's gaps to the tolerance once the set is
+   right, and far enough from round-off (1e9 E/m moves the results by 2e-4). */
+static PetscErrorCode BoltContactLawCreate_Strict(BoltContactLaw *law)
+{
+  PetscFunctionBeginUser;
+  law->traction      = StickTraction;
+  law->strict        = PETSC_TRUE;
+  law->penaltyFactor = 3e7;
   PetscFunctionReturn(0);
 }
 
@@ -42,6 +61,7 @@ PetscErrorCode BoltContactLawRegisterAll(void)
   PetscFunctionBeginUser;
   if (BoltContactLawRegistered) PetscFunctionReturn(0);
   BoltContactLawRegistered = PETSC_TRUE;
+  PetscCall(BoltContactLawRegister("strict", BoltContactLawCreate_Strict));
   PetscCall(BoltContactLawRegister("stick", BoltContactLawCreate_Stick));
   PetscCall(PetscRegisterFinalize(BoltContactLawFinalize));
   PetscFunctionReturn(0);

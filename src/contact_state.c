@@ -17,14 +17,16 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
   PetscCall(BoltContactLawSetType(c->mesh->comm, s->lawType, &s->law));
   s->augment       = c->augment;
   s->activationGap = c->activationGap;
-  s->openTest      = c->openTest;
+  /* the strict law judges a closed pair on its nodal traction (force over tributary area): with
+     nodal quadrature that is the node pair's own multiplier, shared by its element corners */
+  s->openTest      = s->law.strict ? BOLT_OPEN_NODAL : c->openTest;
   for (PetscInt p = 0; p < c->npairs; p++) {
     s->epsN[p]         = c->epsN[p];
     s->epsT[p]         = c->epsT[p];
     s->bandTraction[p] = c->bandTraction[p];
   }
   PetscCall(PetscCalloc2(12 * ne + 1, &s->lambda, 12 * ne + 1, &s->gap));
-  PetscCall(PetscMalloc3(4 * ne + 1, &s->active, 4 * ne + 1, &s->activeOld, 4 * ne + 1, &s->activeOlder));
+  PetscCall(PetscMalloc4(4 * ne + 1, &s->active, 4 * ne + 1, &s->activeOld, 4 * ne + 1, &s->activeOlder, 4 * ne + 1, &s->released));
   PetscCall(PetscMalloc1(ne + 1, &s->dirty));
   PetscCall(BoltContactStateReset(s));
   *sp = s;
@@ -38,7 +40,7 @@ PetscErrorCode BoltContactStateDestroy(BoltContactState **sp)
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(0);
   PetscCall(PetscFree2(s->lambda, s->gap));
-  PetscCall(PetscFree3(s->active, s->activeOld, s->activeOlder));
+  PetscCall(PetscFree4(s->active, s->activeOld, s->activeOlder, s->released));
   PetscCall(PetscFree(s->dirty));
   PetscCall(PetscFree(s->Ke));
   PetscCall(MatDestroy(&s->Kc));
@@ -86,8 +88,8 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
   PetscFunctionReturn(0);
 }
 
-/* Element e's state as BOLT_CONTACT_PACK values (checkpoints): multipliers (12), gaps (12) and
-   the active flags of the last three outer iterations (4 each). */
+/* Element e's state as BOLT_CONTACT_PACK values (checkpoints): multipliers (12), gaps (12), the
+   active flags of the last three outer iterations and the released flags (4 each). */
 void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
 {
   PetscInt k = 0;
@@ -97,6 +99,7 @@ void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->active[4 * e + i];
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->activeOld[4 * e + i];
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->activeOlder[4 * e + i];
+  for (PetscInt i = 0; i < 4; i++) buf[k++] = s->released[4 * e + i];
 }
 
 /* The inverse of BoltContactStatePack; the element is due for a stiffness update. */
@@ -107,6 +110,7 @@ void BoltContactStateUnpack(BoltContactState *s, PetscInt e, const PetscReal buf
   for (PetscInt i = 0; i < 4; i++) s->active[4 * e + i] = buf[24 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
   for (PetscInt i = 0; i < 4; i++) s->activeOld[4 * e + i] = buf[28 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
   for (PetscInt i = 0; i < 4; i++) s->activeOlder[4 * e + i] = buf[32 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt i = 0; i < 4; i++) s->released[4 * e + i] = buf[36 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
   s->dirty[e]    = PETSC_TRUE;
   s->KcAssembled = PETSC_FALSE;
 }
@@ -116,7 +120,10 @@ PetscErrorCode BoltContactStateReset(BoltContactState *s)
   BoltContactSet *c = s->set;
 
   PetscFunctionBeginUser;
-  for (PetscInt g = 0; g < 4 * c->nelem; g++) s->active[g] = s->activeOld[g] = s->activeOlder[g] = PETSC_TRUE;
+  for (PetscInt g = 0; g < 4 * c->nelem; g++) {
+    s->active[g] = s->activeOld[g] = s->activeOlder[g] = PETSC_TRUE;
+    s->released[g] = PETSC_FALSE;
+  }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
   s->KcAssembled = PETSC_FALSE;
   PetscCall(PetscArrayzero(s->lambda, 12 * c->nelem));
@@ -136,7 +143,8 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *s)
 }
 
 /* One augmentation: lambda <- trial traction at active points, 0 elsewhere. Returns the
-   relative change of the multipliers and the largest penetration (-g.n) of an active point. */
+   relative change of the multipliers and the largest violation of an active point's
+   constraint: its penetration -g.n, or under the strict law (a closed pair sticks) |g|. */
 PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange, PetscReal *maxPenetration)
 {
   BoltContactSet *c = s->set;
@@ -149,13 +157,16 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
       PetscInt         gp = 4 * e + q;
       PetscReal       *lam = &s->lambda[3 * gp], t[3] = {0, 0, 0};
       const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
-      if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], s->epsT[pair], t);
+      if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
       for (PetscInt k = 0; k < 3; k++) {
         loc[0] += PetscSqr(t[k] - lam[k]);
         loc[1] += PetscSqr(t[k]);
         lam[k] = t[k];
       }
-      if (s->active[gp]) loc[2] = PetscMax(loc[2], -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]));
+      if (s->active[gp]) {
+        const PetscReal gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
+        loc[2] = PetscMax(loc[2], !s->law.strict ? -gn : s->released[gp] ? PetscAbsReal(gn) : PetscSqrtReal(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+      }
     }
   }
   PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPI_SUM, c->mesh->comm));
@@ -183,7 +194,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
       PetscReal *t  = &c->tau[3 * gp];
       if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
       else if (s->augment) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
-      else s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[pair], s->epsT[pair], t);
+      else s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
     }
   }
   PetscCall(PetscMalloc1(4 * c->nelem + 1, &tnOpen));
@@ -210,10 +221,17 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
       }
       s->activeOlder[gp] = s->activeOld[gp];
       s->activeOld[gp]   = s->active[gp];
+      /* a sticking pair that opened and now closes to slide is in a new state, not a cycle */
+      if (s->law.strict && now && !s->active[gp] && !s->released[gp]) loc[2]++;
       if (now != s->active[gp]) {
         loc[0]++;
         s->dirty[e] = PETSC_TRUE;
         if (!now) s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
+        /* strict law: a pair that closes again slides (normal contact only). It has no stick
+           position to return to short of friction with slip history; tied back to where it
+           started it would snap, and a pair that opened under tension while sticking can
+           penetrate once open, so that stick-open-stick would cycle. */
+        else if (s->law.strict) s->released[gp] = PETSC_TRUE;
       }
       s->active[gp] = now;
       if (now) loc[1]++;
@@ -240,6 +258,7 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool ac
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     s->active[gp] = s->activeOld[gp] = s->activeOlder[gp] = active[gp];
+    s->released[gp] = (PetscBool)(s->law.strict && !active[gp]); /* as if it had opened: it will slide */
     if (active[gp]) nact++;
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
@@ -260,6 +279,7 @@ PetscErrorCode BoltContactStateCloseCycle(BoltContactState *s, PetscInt *nclosed
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     if (!s->active[gp] && s->activeOld[gp]) {
       s->active[gp]     = PETSC_TRUE;
+      if (s->law.strict) s->released[gp] = PETSC_TRUE;
       s->dirty[gp / 4] = PETSC_TRUE;
       loc[0]++;
     }
@@ -286,7 +306,7 @@ PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
   }
   for (PetscInt e = 0; e < c->nelem; e++) {
     if (!s->dirty[e]) continue;
-    PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], &s->Ke[576 * e]));
+    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], &s->released[4 * e], &s->Ke[576 * e]));
     s->dirty[e] = PETSC_FALSE;
     changed++;
   }
@@ -313,7 +333,7 @@ static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt g
     t[0] = t[1] = t[2] = 0;
     return;
   }
-  s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], t);
+  s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[c->elem[e].pair], BoltContactStateEpsT(s, gp, c->elem[e].pair), t);
 }
 
 /* Sum over each pair of the normal contact force, int t.n dA (negative in compression). */
@@ -388,5 +408,34 @@ PetscErrorCode BoltContactStatePenetration(BoltContactState *s, PetscReal g[], P
     loc = PetscMax(loc, -(g[3 * gp] * n[0] + g[3 * gp + 1] * n[1] + g[3 * gp + 2] * n[2]));
   }
   PetscCall(MPIU_Allreduce(&loc, pen, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+/* How far the current state is from one-sided contact at its points (strict law), from the
+   gaps of the last solve and the multipliers: the largest penetration -g.n at any point [m];
+   the largest tension of a closed point, judged on its node pair's traction (nodal force over
+   tributary area) [Pa], and the largest compression [Pa]; and the largest |t.n g.n| [N/m]. */
+PetscErrorCode BoltContactStateComplementarity(BoltContactState *s, PetscReal *penetration, PetscReal *tension, PetscReal *compression, PetscReal *product)
+{
+  BoltContactSet *c = s->set;
+  PetscReal      *tn, loc[4] = {0, 0, 0, 0}, glob[4];
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
+    for (PetscInt k = 0; k < 3; k++) c->tau[3 * gp + k] = s->active[gp] ? s->lambda[3 * gp + k] : 0;
+  PetscCall(PetscMalloc1(4 * c->nelem + 1, &tn));
+  PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tn));
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp], gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
+    loc[0] = PetscMax(loc[0], -gn);
+    if (s->active[gp]) loc[1] = PetscMax(loc[1], tn[gp]);
+    loc[2] = PetscMax(loc[2], -tn[gp]);
+    loc[3] = PetscMax(loc[3], PetscAbsReal(tn[gp] * gn));
+  }
+  PetscCall(PetscFree(tn));
+  PetscCall(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  *penetration = glob[0];
+  *tension     = glob[1];
+  *compression = glob[2];
+  *product     = glob[3];
   PetscFunctionReturn(0);
 }

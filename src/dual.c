@@ -288,7 +288,7 @@ PetscErrorCode BoltDualSetFromOptions(BoltDual *d)
   PetscCall(PetscOptionsInt("-contact_max_outer", "Outer (active set) iterations per step", NULL, d->maxOuter, &d->maxOuter, NULL));
   PetscCall(PetscOptionsInt("-contact_max_inner", "Inner (augmentation) iterations per outer iteration", NULL, d->maxInner, &d->maxInner, NULL));
   PetscCall(PetscOptionsReal("-contact_tol_lambda", "Tolerance on the relative change of the multipliers", NULL, d->tolLambda, &d->tolLambda, NULL));
-  PetscCall(PetscOptionsReal("-contact_tol_penetration", "Tolerance on the largest penetration of an active point [m]", NULL, d->tolPenetration, &d->tolPenetration, NULL));
+  PetscCall(PetscOptionsReal("-contact_tol_penetration", "Tolerance on the largest penetration of an active point [m] (strict law: on the largest gap of a closed pair; default 1e-10 x the shortest contact-face edge; stick law: 1e-9)", NULL, d->tolPenetration, &d->tolPenetration, &d->tolPenetrationSet));
   PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, d->warmStart, &d->warmStart, NULL));
   PetscCall(PetscOptionsBool("-contact_cycle_close", "Anti-cycling: when the active set cycles between two sets (its toggling points are then closed) or has not settled in half of -contact_max_outer, points may only close for the rest of the step; false: a cycle stops the run (or warns, with -contact_continue)", NULL, d->closeCycles, &d->closeCycles, NULL));
   PetscCall(PetscOptionsBool("-contact_continue", "On non-convergence, warn and go on instead of stopping", NULL, d->continueOnFailure, &d->continueOnFailure, NULL));
@@ -308,6 +308,7 @@ PetscErrorCode BoltDualSetUp(BoltDual *d)
   Mat           Kc, Z;
 
   PetscFunctionBeginUser;
+  if (op->state->law.strict && !d->tolPenetrationSet) d->tolPenetration = op->contact->gapTolerance;
   PetscCall(MatCreateVecs(op->K, &d->Fc, NULL));
   PetscCall(VecDuplicate(d->Fc, &d->work));
   PetscCall(VecDuplicate(d->Fc, &d->qp));
@@ -369,6 +370,79 @@ static PetscErrorCode BoltDualCalibrate(BoltDual *d, Vec rhs0, Vec q)
   PetscFunctionReturn(0);
 }
 
+/* The strict law's loop: the active set and the multipliers are updated together after every
+   solve (a primal-dual active-set iteration on the augmented Lagrangian). Each iteration solves
+   with the current multipliers and the stiff penalty of the closed pairs, takes the trial
+   tractions lambda + P g as the new multipliers (they balance the solved displacement exactly),
+   and re-decides every node pair from them: a closed pair opens under tension, an open one
+   closes when it penetrates. The loop ends when the set holds and no closed pair is off its
+   contact by more than the tolerance; the multipliers' error is then that tolerance times the
+   structure's stiffness, not times the penalty. Warm-started from the last step, a step in
+   which the set does not change costs one solve; a set change costs a factorisation. */
+static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, PetscInt *nouter, PetscInt *ninner)
+{
+  BoltOperator     *op   = d->op;
+  BoltContactState *s    = op->state;
+  MPI_Comm          comm = op->comm;
+  PetscInt          sets = 1, solves = 0;
+
+  PetscFunctionBeginUser;
+  s->closeOnly = PETSC_FALSE;
+  for (;;) {
+    PetscInt  nchanged;
+    PetscBool cycling;
+    PetscReal rel, viol;
+
+    if (refactor) PetscCall(BoltDualFactor(d));
+    refactor = PETSC_FALSE;
+    PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, q));
+    PetscCall(BoltDualGapsOf(d, q, s->gap));
+    solves++;
+    PetscCall(BoltContactStateAugment(s, &rel, &viol));
+    PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(viol), comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", op->name, d->step, (double)d->time);
+    d->lastChange      = rel;
+    d->lastPenetration = viol;
+    if (d->calibrating) PetscCall(BoltDualCalibrate(d, rhs0, q));
+    if (d->keepActiveSet && !d->dynamic) nchanged = 0, cycling = PETSC_FALSE;
+    else PetscCall(BoltContactStateUpdateActive(s, &nchanged, &cycling));
+    if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, sets, solves, nchanged, cycling));
+    if (!nchanged && viol <= d->tolPenetration) break;
+    if (nchanged) {
+      sets++;
+      refactor = PETSC_TRUE;
+      if (d->closeCycles && !s->closeOnly && (cycling || 2 * sets >= d->maxOuter)) {
+        PetscInt nclosed = 0;
+        if (cycling) PetscCall(BoltContactStateCloseCycle(s, &nclosed));
+        s->closeOnly = PETSC_TRUE;
+        d->cycles++;
+        if (d->monitor > 0 || d->cycles <= 10) PetscCall(PetscPrintf(comm, "%s step %" PetscInt_FMT ", t = %g s: the active set %s after %" PetscInt_FMT " sets; from now on in this step pairs only close (%" PetscInt_FMT " re-closed, %" PetscInt_FMT " active)%s\n", op->name, d->step, (double)d->time, cycling ? "cycles between two sets" : "has not settled", sets, nclosed, s->nactive, d->cycles == 10 ? "; further cycles are counted, not printed" : ""));
+      }
+    }
+    if ((nchanged && (sets > d->maxOuter || (cycling && !d->closeCycles))) || solves >= d->maxInner) {
+      d->failures++;
+      PetscCheck(d->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: the contact loop did not converge at step %" PetscInt_FMT ", t = %g s: after %" PetscInt_FMT " solves and %" PetscInt_FMT " active sets, %" PetscInt_FMT " pairs changed and a closed pair is off its contact by %.3e m (tolerance %.1e); raise -contact_max_outer / -contact_max_inner or add -contact_continue to go on with a warning", op->name, d->step, (double)d->time, solves, sets, nchanged, (double)viol, (double)d->tolPenetration);
+      PetscCall(PetscPrintf(comm, "WARNING %s: contact loop not converged at step %" PetscInt_FMT ", t = %g s; going on\n", op->name, d->step, (double)d->time));
+      if (refactor) PetscCall(BoltDualFactor(d)); /* the next step starts consistent */
+      break;
+    }
+  }
+  {
+    PetscReal pen, ten, comp, prod;
+    PetscCall(BoltContactStateComplementarity(s, &pen, &ten, &comp, &prod));
+    d->worstPenetration = PetscMax(d->worstPenetration, pen);
+    d->worstTension     = PetscMax(d->worstTension, ten);
+    d->worstCompression = PetscMax(d->worstCompression, comp);
+    d->worstProduct     = PetscMax(d->worstProduct, prod);
+  }
+  *nouter = sets;
+  *ninner = solves;
+  d->outerTotal += sets;
+  d->innerTotal += solves;
+  d->outerMax = PetscMax(d->outerMax, sets);
+  d->innerMax = PetscMax(d->innerMax, solves);
+  PetscFunctionReturn(0);
+}
+
 /* The dual loop for one solve: K_eff q = rhs0 - B' lambda with contact. */
 PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, PetscInt *nouter, PetscInt *ninner)
 {
@@ -378,6 +452,10 @@ PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, P
   PetscInt          outer, inner = 0, innerTotal = 0;
 
   PetscFunctionBeginUser;
+  if (s->law.strict && s->augment) {
+    PetscCall(BoltDualSolveActiveSet(d, rhs0, q, refactor, nouter, ninner));
+    PetscFunctionReturn(0);
+  }
   s->closeOnly = PETSC_FALSE;
   for (outer = 1;; outer++) {
     PetscInt  nchanged;
@@ -447,6 +525,7 @@ PetscErrorCode BoltDualResetCounters(BoltDual *d)
 {
   PetscFunctionBeginUser;
   d->factorizations = d->solves = d->outerTotal = d->innerTotal = d->outerMax = d->innerMax = 0;
+  d->worstPenetration = d->worstTension = d->worstCompression = d->worstProduct = 0;
   d->tContactStiffness = d->tDisplacements = d->tContactForces = 0;
   PetscFunctionReturn(0);
 }

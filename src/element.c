@@ -306,10 +306,9 @@ PetscErrorCode Hex8Stress(const PetscReal X[24], const PetscReal u[24], PetscRea
 
 /* Bilinear quad at Gauss point gp: shape functions, t1 x t2 (tangents along s and t) and
    |t1| |t2| (to detect a degenerate face). */
-static PetscErrorCode QuadGauss(const PetscReal X[12], PetscInt gp, PetscReal N[4], PetscReal c[3], PetscReal *scale)
+static PetscErrorCode QuadAt(const PetscReal X[12], PetscReal s, PetscReal t, PetscReal N[4], PetscReal c[3], PetscReal *scale)
 {
-  const PetscReal s = GAUSS_PT * quadNode[gp][0], t = GAUSS_PT * quadNode[gp][1];
-  PetscReal       t1[3] = {0}, t2[3] = {0};
+  PetscReal t1[3] = {0}, t2[3] = {0};
   PetscInt        a, d;
 
   PetscFunctionBeginUser;
@@ -326,6 +325,13 @@ static PetscErrorCode QuadGauss(const PetscReal X[12], PetscInt gp, PetscReal N[
   c[1] = t1[2] * t2[0] - t1[0] * t2[2];
   c[2] = t1[0] * t2[1] - t1[1] * t2[0];
   *scale = PetscSqrtReal((t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]) * (t2[0] * t2[0] + t2[1] * t2[1] + t2[2] * t2[2]));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode QuadGauss(const PetscReal X[12], PetscInt gp, PetscReal N[4], PetscReal c[3], PetscReal *scale)
+{
+  PetscFunctionBeginUser;
+  PetscCall(QuadAt(X, GAUSS_PT * quadNode[gp][0], GAUSS_PT * quadNode[gp][1], N, c, scale));
   PetscFunctionReturn(0);
 }
 
@@ -397,6 +403,53 @@ PetscErrorCode QuadPairPenaltyStiffnessActive(const PetscReal Xa[12], PetscReal 
   /* B = [-N, N]: Kc = [M -M; -M M] */
   for (a = 0; a < 12; a++)
     for (b = 0; b < 12; b++) {
+      Kc[24 * a + b]             = M[12 * a + b];
+      Kc[24 * a + b + 12]        = -M[12 * a + b];
+      Kc[24 * (a + 12) + b]      = -M[12 * a + b];
+      Kc[24 * (a + 12) + b + 12] = M[12 * a + b];
+    }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode QuadNodalPoints(const PetscReal Xa[12], PetscReal N[16], PetscReal w[4], PetscReal n[12])
+{
+  PetscReal c[3], scale, dA;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < 4; a++) {
+    /* the trapezoidal rule in each direction: weight 1 at each corner of [-1,1]^2 */
+    PetscCall(QuadAt(Xa, quadNode[a][0], quadNode[a][1], &N[4 * a], c, &scale));
+    dA = PetscSqrtReal(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    PetscCheck(dA > HEX8_DEGENERATE * scale, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Quad face degenerate at node %" PetscInt_FMT ": |t1 x t2| = %g, no normal", a, (double)dA);
+    w[a] = dA;
+    for (PetscInt k = 0; k < 3; k++) n[3 * a + k] = c[k] / dA;
+    for (PetscInt b = 0; b < 4; b++) N[4 * a + b] = a == b ? 1.0 : 0.0; /* exact at the nodes */
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode QuadPairPenaltyStiffnessPoints(const PetscReal N[16], const PetscReal w[4], const PetscReal n[12], PetscReal epsN, PetscReal epsT, const PetscBool active[4], const PetscBool released[4], PetscReal Kc[576])
+{
+  PetscReal M[144] = {0}, P[9];
+
+  PetscFunctionBeginUser;
+  PetscCheck(epsN >= 0 && epsT >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Penalty parameters must be non-negative: epsN = %g, epsT = %g", (double)epsN, (double)epsT);
+  for (PetscInt q = 0; q < 4; q++) {
+    const PetscReal *nq = &n[3 * q], *Nq = &N[4 * q];
+    const PetscReal et = (released && released[q]) ? 0 : epsT;
+    if (!active[q]) continue;
+    for (PetscInt k = 0; k < 3; k++)
+      for (PetscInt l = 0; l < 3; l++) P[3 * k + l] = (epsN - et) * nq[k] * nq[l] + (k == l ? et : 0);
+    for (PetscInt a = 0; a < 4; a++)
+      for (PetscInt b = 0; b < 4; b++) {
+        const PetscReal f = Nq[a] * Nq[b] * w[q];
+        if (f == 0) continue;
+        for (PetscInt k = 0; k < 3; k++)
+          for (PetscInt l = 0; l < 3; l++) M[12 * (3 * a + k) + 3 * b + l] += f * P[3 * k + l];
+      }
+  }
+  for (PetscInt a = 0; a < 12; a++)
+    for (PetscInt b = 0; b < 12; b++) {
       Kc[24 * a + b]             = M[12 * a + b];
       Kc[24 * a + b + 12]        = -M[12 * a + b];
       Kc[24 * (a + 12) + b]      = -M[12 * a + b];

@@ -45,9 +45,9 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   o->penaltyScale = 0;
   o->nClosed = 3;
   PetscCall(PetscOptionsInt("-rom_closed_krylov", "With -rom_preload_state or -rom_static_shapes: closed-contact Krylov vectors added after the load response (each the FOM's static response, contact closed, to the mass times the previous one)", NULL, o->nClosed, &o->nClosed, NULL));
-  PetscCall(PetscOptionsReal("-rom_contact_penalty_scale", "The ROM's contact penalties as a multiple of the FOM's (default with -rom_preload_state against an augmented FOM: 500, or 20 with -rom_closed_krylov 0; else 1)", NULL, o->penaltyScale, &o->penaltyScale, NULL));
-  o->staticPenaltyScale = 1e4;
-  PetscCall(PetscOptionsReal("-rom_static_penalty_scale", "With -rom_preload_state: the penalty of the offline static solves from the preloaded state (load response, closed-contact Krylov vectors) as a multiple of the FOM's; they converge to the same gap-free state, in fewer iterations the stiffer it is", NULL, o->staticPenaltyScale, &o->staticPenaltyScale, NULL));
+  PetscCall(PetscOptionsReal("-rom_contact_penalty_scale", "The ROM's contact penalties as a multiple of the FOM's (default with -rom_preload_state against an augmented FOM: 1e5 E/m, or 4e3 E/m with -rom_closed_krylov 0, over the FOM's penalty factor; else 1)", NULL, o->penaltyScale, &o->penaltyScale, NULL));
+  o->staticPenaltyScale = 0; /* the default is resolved against the FOM's penalty when the ROM is built */
+  PetscCall(PetscOptionsReal("-rom_static_penalty_scale", "With -rom_preload_state: the penalty of the offline static solves from the preloaded state (load response, closed-contact Krylov vectors) as a multiple of the FOM's (default: 2e6 E/m over the FOM's penalty factor, at least 1); they converge to the same gap-free state, in fewer iterations the stiffer it is", NULL, o->staticPenaltyScale, &o->staticPenaltyScale, NULL));
   o->closedKeepActive = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-rom_closed_keep_active", "With -rom_closed_krylov: the closed-contact Krylov vectors keep the preloaded active set (false: their forcing may open and close points, as the load response's does)", NULL, o->closedKeepActive, &o->closedKeepActive, NULL));
   o->staticShapes = PETSC_TRUE;
@@ -57,7 +57,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, red->view, &red->view, NULL));
   PetscOptionsEnd();
   PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
-  PetscCheck(o->staticPenaltyScale > 0, comm, PETSC_ERR_USER_INPUT, "-rom_static_penalty_scale must be > 0 (got %g)", (double)o->staticPenaltyScale);
+  PetscCheck(o->staticPenaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_static_penalty_scale must be > 0 (got %g)", (double)o->staticPenaltyScale);
   PetscCheck(o->bandScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_band_scale must be > 0 (got %g)", (double)o->bandScale);
   PetscCheck(o->nClosed >= 0 && o->nClosed <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_closed_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nClosed);
   PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");

@@ -95,7 +95,7 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscReal *d = &delta[144 * ndirty], size = 0;
     if (!s->dirty[e]) continue;
-    PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], Knew));
+    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], &s->released[4 * e], Knew));
     for (PetscInt a = 0; a < 12; a++)
       for (PetscInt b = 0; b < 12; b++) {
         d[12 * a + b]                 = Knew[24 * a + b] - rom->Ke[144 * e + 12 * a + b];
@@ -306,7 +306,7 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
         lam[k] = rom->lambda0[3 * gp + k] * preloadForce;
         g[k]   = -(1 - 1 / rom->penaltyScale) * rom->gap0[3 * gp + k] * preloadForce;
       }
-      s->law.traction(lam, g, &c->gpNormal[3 * gp], s->epsN[pair], s->epsT[pair], &s->lambda[3 * gp]);
+      s->law.traction(lam, g, &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), &s->lambda[3 * gp]);
     }
   }
   PetscCall(BoltContactStateSetActive(s, rom->active0));

@@ -24,6 +24,19 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
   }
   PetscCall(BoltJSONInt(j, "failures", nm->dual->failures));
   PetscCall(BoltJSONInt(j, "cycles", nm->dual->cycles));
+  if (full && nm->op->state->law.strict && nm->op->state->augment) {
+    /* one-sided contact after every converged step of the transient: penetration relative to
+       the shortest contact-face edge, the largest tension of a closed pair and the largest
+       |t.n g.n|, relative to the largest compression (times that edge) */
+    const PetscReal h = nm->op->contact->hMin, tc = nm->dual->worstCompression > 0 ? nm->dual->worstCompression : 1;
+    PetscCall(BoltJSONBeginObject(j, "strict_check"));
+    PetscCall(BoltJSONReal(j, "penetration_over_h", nm->dual->worstPenetration / h));
+    PetscCall(BoltJSONReal(j, "tension_pa", nm->dual->worstTension));
+    PetscCall(BoltJSONReal(j, "compression_pa", nm->dual->worstCompression));
+    PetscCall(BoltJSONReal(j, "tension_rel", nm->dual->worstTension / tc));
+    PetscCall(BoltJSONReal(j, "complementarity_rel", nm->dual->worstProduct / (tc * h)));
+    PetscCall(BoltJSONEndObject(j));
+  }
   if (full) {
     PetscCall(BoltJSONInt(j, "active_points", nm->op->state->nactive));
     PetscCall(BoltJSONInt(j, "contact_points", nm->op->contact->ngpGlobal));
