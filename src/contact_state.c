@@ -323,14 +323,20 @@ PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
   PetscFunctionReturn(0);
 }
 
-/* The contact traction at a Gauss point: the trial traction lambda + P g where active (equal to
-   lambda once the augmentations converge; P g alone for pure penalty), zero elsewhere. */
+/* The contact traction at a point: the trial traction lambda + P g where active (equal to
+   lambda once the augmentations converge; P g alone for pure penalty), zero elsewhere. The
+   strict loop's multipliers already are the trial tractions of its last solve (its stiff
+   penalty on the remaining gap would count that gap twice). */
 static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt gp, PetscReal t[3])
 {
   BoltContactSet *c = s->set;
 
   if (!s->active[gp]) {
     t[0] = t[1] = t[2] = 0;
+    return;
+  }
+  if (s->law.strict && s->augment) {
+    for (PetscInt k = 0; k < 3; k++) t[k] = s->lambda[3 * gp + k];
     return;
   }
   s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[c->elem[e].pair], BoltContactStateEpsT(s, gp, c->elem[e].pair), t);

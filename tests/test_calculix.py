@@ -3,9 +3,9 @@
 The tied joint (contact pairs merged in ccx, boltrom with a stiff penalty) must agree tightly
 with full hexahedra (C3D8, the same element) at any level; the incompatible-modes elements of
 the two codes are different formulations, so they agree less on this coarse mesh. The preloaded
-contact comparison (ccx: stiff penalty, stick by friction) depends on where each code's contact
-law opens the joint; its coarse-level tolerances are the measured differences with margin
-(docs/verification.md, "CalculiX cross-check", has the figures at levels 0.5 and 1).
+contact comparison (ccx: stiff penalty, stick by friction) runs boltrom's strict law, which
+opens the joint where ccx does, and holds it to the acceptance tolerances of the paper-level
+mesh (docs/verification.md, "CalculiX cross-check", has the figures at levels 0.5 and 1).
 """
 import json
 import shutil
@@ -15,11 +15,11 @@ import pytest
 
 from conftest import ENV, PYTHON, ROOT
 
-# measured at level 0.5 with boltrom's default contact options: tied full < 1.4e-5, tied
-# incompatible f 7.3e-3 / u_z 3.4e-3, contact load-induced 5.7e-3, preload-only 0.11
+# measured at level 0.5: tied full < 1.4e-5, tied incompatible f 7.3e-3 / u_z 3.4e-3; contact
+# with the strict law, load-induced 3.9e-3, preload-only 4.2e-2 (the stick law: 5.7e-3, 0.11)
 TOL = {"--tol-freq-full": 1e-4, "--tol-tied-disp-full": 1e-4,
        "--tol-freq-incompatible": 1e-2, "--tol-tied-disp-incompatible": 5e-3,
-       "--tol-load-disp": 1e-2, "--tol-preload-disp": 0.15}
+       "--tol-load-disp": 5e-3, "--tol-preload-disp": 5e-2}
 
 
 @pytest.fixture(scope="module")
@@ -30,7 +30,7 @@ def crosscheck(joint_small, tmp_path_factory):
     work = tmp_path_factory.mktemp("ccx")
     out = work / "crosscheck.json"
     cmd = [PYTHON, str(ROOT / "scripts" / "ccx-crosscheck"), "--level", "0.5", "--mesh", str(mesh),
-           "--workdir", str(work), "--json", str(out)]
+           "--workdir", str(work), "--json", str(out), "--boltrom-args", "-contact_law strict"]
     for k, v in TOL.items():
         cmd += [k, str(v)]
     proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT, timeout=600)

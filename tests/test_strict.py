@@ -1,0 +1,110 @@
+"""The strict contact law (-contact_law strict): one-sided contact at every node pair, checked on
+the contact patch test and on the joint under preload, under loads that open part of it, on one
+and two ranks; and its loop's cost where the active set holds."""
+import h5py
+import numpy as np
+import pytest
+
+from conftest import ROOT, make_mesh, run_summary
+
+STRICT = ["-contact_law", "strict"]
+FOM = ["-fom", "-static", "false", "-modal_nev", "0"]
+SCENE = ["-options_file", str(ROOT / "inputs" / "paper-step.yaml"), "-rom", "false"]
+
+
+@pytest.fixture(scope="module")
+def blocks(meshdir):
+    return make_mesh("blocks", meshdir / "blocks.msh", 1)[0]
+
+
+def assert_one_sided(fom):
+    """After every converged step: no node pair penetrates by more than 1e-9 of the shortest
+    contact-face edge, no closed pair is in tension beyond 1e-10 E (1e-6 of the largest
+    compression here), and traction and gap are complementary."""
+    chk = fom["strict_check"]
+    assert chk["penetration_over_h"] <= 1e-9
+    assert chk["tension_rel"] <= 1e-6
+    assert chk["complementarity_rel"] <= 1e-9
+    assert fom["cycles"] == 0 and fom["failures"] == 0
+
+
+@pytest.mark.parametrize("penalty", ["1e4", "3e7"])
+def test_strict_patch_uniform_pressure(blocks, tmp_path, penalty):
+    """Two blocks pressed by p = 1 kN / 1 cm^2 with nu = 0 (uniform exact stress): every node
+    pair carries p on its tributary area whatever the augmentation penalty, and no pair
+    penetrates."""
+    s = run_summary(["-mesh", blocks] + FOM + STRICT + [
+        "-load_group", "top", "-probe_group", "top", "-load_force", "1000", "-static_contact_load",
+        "-ts_dt", "1e-4", "-ts_end", "1e-4", "-material_steel_nu", "0", "-contact_penalty_factor", penalty,
+        "-output", "false"], tmp_path)
+    p = 1000.0 / 1e-4
+    pre = s["preload"]
+    assert pre["active_points"] == 16
+    assert abs(pre["traction_normal_min"] / -p - 1) < 1e-8
+    assert abs(pre["traction_normal_max"] / -p - 1) < 1e-8
+    assert pre["traction_tangential_max"] < 1e-8 * p
+    assert pre["penetration_max"] < 1e-9 * 5e-3  # 1e-9 of the 5 mm contact faces
+    assert abs(pre["normal_force_per_pair"]["upper_lower"] + 1000.0) < 1e-8 * 1000.0
+
+
+def test_strict_blocks_pulled_apart(blocks, tmp_path):
+    """Pulled apart, every pair opens and carries nothing."""
+    s = run_summary(["-mesh", blocks] + FOM + STRICT + [
+        "-load_group", "top", "-probe_group", "top", "-load_force", "1000", "-load_direction", "0,0,1",
+        "-ts_dt", "1e-5", "-ts_end", "5e-5", "-output", "false"], tmp_path)
+    assert s["fom"]["active_points"] == 0
+    assert s["fom"]["probe_final"] > 0
+
+
+def test_strict_joint_paper_step_one_and_two_ranks(joint_small, tmp_path):
+    """The preloaded joint under the paper's 10 N step: one-sided contact after every step, the
+    rim of the plate overlap open under the preload, about one solve per step once the set has
+    settled, and the same history on one and two ranks."""
+    mesh, _ = joint_small
+    hist = {}
+    for ranks in (1, 2):
+        d = tmp_path / f"r{ranks}"
+        s = run_summary(SCENE + STRICT + ["-mesh", mesh, "-ts_end", "0.02", "-output_dir", str(d)], d, ranks=ranks)
+        fom = s["fom"]
+        assert_one_sided(fom)
+        assert fom["active_points"] < fom["contact_points"]  # the preload opens the overlap's rim
+        assert fom["solves"] <= 1.2 * fom["steps"]
+        with h5py.File(d / "paper-step.h5") as f:
+            hist[ranks] = np.array(f["fom/probe"])
+    # equal to the loop's gap tolerance (1e-9 of the shortest contact-face edge), which the tip's
+    # lever arm over the joint magnifies: about 2e-6 of the largest value (as between penalties)
+    assert np.abs(hist[1] - hist[2]).max() <= 1e-5 * np.abs(hist[1]).max()
+
+
+def test_strict_result_does_not_depend_on_the_penalty(joint_small, tmp_path):
+    """The penalty is only the loop's augmentation parameter: 1e6 and 3e7 E/m give the same
+    history to the loop's tolerance (the first needs more solves per step)."""
+    mesh, _ = joint_small
+    hist, solves = {}, {}
+    for pf in ("1e6", "3e7"):
+        d = tmp_path / pf
+        s = run_summary(SCENE + STRICT + ["-mesh", mesh, "-ts_end", "0.005", "-output_dir", str(d),
+                                          "-contact_penalty_factor", pf], d)
+        assert_one_sided(s["fom"])
+        solves[pf] = s["fom"]["solves"]
+        with h5py.File(d / "paper-step.h5") as f:
+            hist[pf] = np.array(f["fom/probe"])
+    assert np.abs(hist["1e6"] - hist["3e7"]).max() <= 1e-5 * np.abs(hist["3e7"]).max()
+    assert solves["3e7"] < solves["1e6"]
+
+
+@pytest.mark.parametrize("scene", [
+    ["-preload_force", "2000", "-load_force", "1000", "-load_group", "corner_point"],
+    ["-preload_force", "5000", "-load_force", "300", "-load_direction", "0,1,0"],
+])
+def test_strict_joint_where_the_load_opens_it(joint_small, tmp_path, scene):
+    """Low preloads and loads that open part of the joint: the loop converges at every step
+    without any anti-cycling, in at most 5 solves per step on average, and contact stays
+    one-sided."""
+    mesh, _ = joint_small
+    s = run_summary(SCENE + STRICT + ["-mesh", mesh, "-ts_end", "0.01", "-output_dir", str(tmp_path),
+                                      "-contact_cycle_close", "false"] + scene, tmp_path)
+    fom = s["fom"]
+    assert_one_sided(fom)
+    assert fom["solves"] <= 5 * fom["steps"]
+    assert fom["active_points"] < fom["contact_points"]
