@@ -65,3 +65,15 @@ def joint_paper(meshdir):
 @pytest.fixture(scope="package")
 def block_mesh(meshdir):
     return make_mesh("block", meshdir / "block.msh", 1)
+
+
+def assert_uniform_contact(pre, p, penetration_max, pair="upper_lower", points=16):
+    """The contact patch test's facts: every point closed and carrying the traction p (to 1e-8),
+    no tangential traction, penetration below penetration_max [m], the pair's force p x area."""
+    assert pre["active_points"] == points
+    assert abs(pre["traction_normal_min"] / -p - 1) < 1e-8
+    assert abs(pre["traction_normal_max"] / -p - 1) < 1e-8
+    assert pre["traction_tangential_max"] < 1e-8 * p
+    assert pre["penetration_max"] < penetration_max
+    force = -pre["normal_force_per_pair"][pair]
+    assert abs(force / (p * 1e-4) - 1) < 1e-8

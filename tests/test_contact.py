@@ -4,7 +4,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import ROOT, make_mesh, run_boltrom, run_summary
+from conftest import ROOT, assert_uniform_contact, make_mesh, run_boltrom, run_summary
 
 FOM = ["-fom", "-static", "false", "-modal_nev", "0"]
 
@@ -21,14 +21,8 @@ def test_contact_patch_uniform_pressure(blocks, tmp_path, penalty):
     s = run_summary(["-mesh", blocks] + FOM + ["-load_group", "top", "-probe_group", "top", "-load_force", "1000",
                      "-static_contact_load", "-ts_dt", "1e-4", "-ts_end", "1e-4", "-material_steel_nu", "0",
                      "-contact_penalty_factor", penalty, "-contact_tol_lambda", "1e-12", "-output", "false"], tmp_path)
-    p = 1000.0 / 1e-4
-    pre = s["preload"]
-    assert pre["active_points"] == 16
-    assert abs(pre["traction_normal_min"] / -p - 1) < 1e-8
-    assert abs(pre["traction_normal_max"] / -p - 1) < 1e-8
-    assert pre["traction_tangential_max"] < 1e-8 * p
-    assert pre["penetration_max"] < 1e-12  # metres; the penalty alone would leave p / eps
-    assert abs(pre["normal_force_per_pair"]["upper_lower"] + 1000.0) < 1e-8 * 1000.0
+    # penetration in metres: the penalty alone would leave p / eps
+    assert_uniform_contact(s["preload"], 1000.0 / 1e-4, 1e-12)
 
 
 def test_contact_opening(blocks, tmp_path):
