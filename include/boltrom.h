@@ -213,7 +213,7 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *);
 PetscErrorCode BoltContactStateAugment(BoltContactState *, PetscReal *, PetscReal *);
 PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, PetscInt *, PetscBool *);
 PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
-PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[]);
+PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
 PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);
 PetscErrorCode BoltContactStateTractionStats(BoltContactState *, PetscReal *, PetscReal *, PetscReal *);
@@ -299,6 +299,7 @@ typedef struct {
   Vec        q, preload;     /* displacement; preload vector as calibrated */
   PetscReal *lambda;         /* 12 per local contact element */
   PetscBool *active;         /* 4 per local contact element */
+  PetscBool *released;       /* 4 per local contact element */
   PetscReal  outer, inner;   /* iterations its solve took */
 } BoltPreloadState;
 
@@ -452,6 +453,7 @@ typedef struct {
   PetscReal      *lambda0;       /* 12 per local contact element, per N of preload */
   PetscReal      *gap0;          /* the gaps of that state, likewise */
   PetscBool      *active0;       /* 4 per local contact element */
+  PetscBool      *released0;     /* 4 per local contact element: closed but sliding (strict law) */
   PetscReal       penaltyScale;  /* the ROM's penalties: this times the FOM's */
   PetscReal       bandScale;     /* the ROM's activation band (traction): this times the FOM's */
   PetscInt        nClosed;       /* closed-contact Krylov vectors in the basis */

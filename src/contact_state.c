@@ -248,9 +248,10 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
   PetscFunctionReturn(0);
 }
 
-/* Puts a given active set in place (a stored preloaded state): the sets of the last two outer
+/* Puts a given active set in place (a stored preloaded state), with the points that slide
+   (released; NULL: under the strict law, those that are open): the sets of the last two outer
    iterations are taken to be the same, and every element is due for a stiffness update. */
-PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool active[])
+PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool active[], const PetscBool released[])
 {
   BoltContactSet *c = s->set;
   PetscInt        nact = 0;
@@ -258,7 +259,7 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool ac
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     s->active[gp] = s->activeOld[gp] = s->activeOlder[gp] = active[gp];
-    s->released[gp] = (PetscBool)(s->law.strict && !active[gp]); /* as if it had opened: it will slide */
+    s->released[gp] = (PetscBool)(s->law.strict && (released ? released[gp] : !active[gp])); /* an open point will slide */
     if (active[gp]) nact++;
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;

@@ -63,7 +63,7 @@ PetscErrorCode BoltOperatorDestroy(BoltOperator **opp)
 }
 
 /* The static preloaded state of op just solved into q: the displacement, the calibrated preload,
-   the multipliers and the active set, and the iterations it took. */
+   the multipliers, the active set and the sliding points, and the iterations it took. */
 PetscErrorCode BoltPreloadStateCreate(BoltOperator *op, Vec q, PetscReal outer, PetscReal inner, BoltPreloadState **stp)
 {
   BoltContactState *s  = op->state;
@@ -76,9 +76,10 @@ PetscErrorCode BoltPreloadStateCreate(BoltOperator *op, Vec q, PetscReal outer, 
   PetscCall(VecCopy(q, st->q));
   PetscCall(VecDuplicate(op->preload, &st->preload));
   PetscCall(VecCopy(op->preload, st->preload));
-  PetscCall(PetscMalloc2(12 * ne + 1, &st->lambda, 4 * ne + 1, &st->active));
+  PetscCall(PetscMalloc3(12 * ne + 1, &st->lambda, 4 * ne + 1, &st->active, 4 * ne + 1, &st->released));
   PetscCall(PetscArraycpy(st->lambda, s->lambda, 12 * ne));
   PetscCall(PetscArraycpy(st->active, s->active, 4 * ne));
+  PetscCall(PetscArraycpy(st->released, s->released, 4 * ne));
   st->outer = outer;
   st->inner = inner;
   *stp      = st;
@@ -96,7 +97,7 @@ PetscErrorCode BoltPreloadStateApply(const BoltPreloadState *st, BoltOperator *o
   PetscCall(VecCopy(st->q, q));
   PetscCall(VecCopy(st->preload, op->preload));
   PetscCall(PetscArraycpy(s->lambda, st->lambda, 12 * op->contact->nelem));
-  PetscCall(BoltContactStateSetActive(s, st->active));
+  PetscCall(BoltContactStateSetActive(s, st->active, st->released));
   PetscFunctionReturn(0);
 }
 
@@ -108,7 +109,7 @@ PetscErrorCode BoltPreloadStateDestroy(BoltPreloadState **stp)
   if (!st) PetscFunctionReturn(0);
   PetscCall(VecDestroy(&st->q));
   PetscCall(VecDestroy(&st->preload));
-  PetscCall(PetscFree2(st->lambda, st->active));
+  PetscCall(PetscFree3(st->lambda, st->active, st->released));
   PetscCall(PetscFree(*stp));
   PetscFunctionReturn(0);
 }

@@ -189,7 +189,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(VecCopy(q, extra[0]));
   PetscCall(VecDuplicate(op->preload, preload));
   PetscCall(VecCopy(op->preload, *preload));
-  PetscCall(PetscMalloc3(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0));
+  PetscCall(PetscMalloc4(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0, 4 * c->nelem + 1, &rom->released0));
   PetscCall(BoltContactSetScatter(c, extra[0]));
   PetscCall(BoltContactStateGaps(s));
   for (PetscInt k = 0; k < 12 * c->nelem; k++) {
@@ -197,6 +197,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
     rom->gap0[k]    = s->gap[k] / F;
   }
   PetscCall(PetscArraycpy(rom->active0, s->active, 4 * c->nelem));
+  PetscCall(PetscArraycpy(rom->released0, s->released, 4 * c->nelem));
   /* The solves below end with the active gaps closed, and the multipliers that close them do not
      depend on the penalty, nor does the active-set test (multipliers against the band). A stiffer
      penalty clusters the multiplier CG's operator B (K + eps B'B)^-1 B' near 1/eps, so the CG
@@ -233,7 +234,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
     PetscReal nforce = 1e-3 * npre, nf;
     PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)nforce, (double)nload, (double)npre));
     if (keepActive) {
-      PetscCall(BoltContactStateSetActive(s, rom->active0));
+      PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
       dual->keepActiveSet = PETSC_TRUE;
     }
     for (PetscInt k = 0; k < nClosed; k++) {
@@ -404,7 +405,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     PetscCall(BoltBasisAppend(V, nextra, extra, &added));
     for (PetscInt k = 0; k < nextra; k++) PetscCall(VecDestroy(&extra[k]));
     if (!rom->preloadState) { /* shapes only: the augmented ROM solves its own preload */
-      PetscCall(PetscFree3(rom->lambda0, rom->gap0, rom->active0));
+      PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
       PetscCall(VecDestroy(&preloadCalibrated));
     }
     PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
@@ -476,7 +477,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree4(rom->work, rom->work2, rom->dK, rom->packed));
   PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
   PetscCall(BoltExactSumDestroy(&rom->sum));
-  PetscCall(PetscFree3(rom->lambda0, rom->gap0, rom->active0));
+  PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(*romp));
   PetscFunctionReturn(0);
 }

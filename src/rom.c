@@ -291,8 +291,13 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
   PetscFunctionBeginUser;
   if (!rom->preloadState) PetscFunctionReturn(0);
   /* The FOM's traction at its preloaded state is lambda0 + P g0 (its penalty P on the residual
-     gaps g0 its loop leaves); the ROM's penalty is s P, so the frozen multipliers take
-     lambda0 - (s - 1) P g0: the ROM's traction there is the FOM's, its penalty acts on increments */
+     gaps g0 its loop leaves), or lambda0 itself after the strict law's loop (its multipliers are
+     already the trial tractions of its last solve); the ROM's penalty is s P, so the frozen
+     multipliers take lambda0 - (s - 1) P g0, or lambda0 - s P g0: the ROM's traction there is
+     the FOM's, its penalty acts on increments */
+  const PetscReal g0Share = s->law.strict ? 1.0 : 1 - 1 / rom->penaltyScale;
+
+  PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0)); /* sliding points first: their traction is normal */
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
@@ -304,12 +309,11 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
       }
       for (PetscInt k = 0; k < 3; k++) {
         lam[k] = rom->lambda0[3 * gp + k] * preloadForce;
-        g[k]   = -(1 - 1 / rom->penaltyScale) * rom->gap0[3 * gp + k] * preloadForce;
+        g[k]   = -g0Share * rom->gap0[3 * gp + k] * preloadForce;
       }
       s->law.traction(lam, g, &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), &s->lambda[3 * gp]);
     }
   }
-  PetscCall(BoltContactStateSetActive(s, rom->active0));
   nm->calibratePreload = PETSC_FALSE;
   /* the static state is the FOM's by construction: its active set is not judged again there
      (under the ROM's stiffer penalty, points at the rim whose traction is within the band of

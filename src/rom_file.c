@@ -45,6 +45,16 @@ PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLo
     PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g", c->pairName[p], (double)c->epsN[p]));
     PetscCall(PetscStrlcat(fp, part, len));
   }
+  {
+    /* the preloaded state is per contact point: a file of another law or quadrature does not
+       fit (the paper's stick law with Gauss points, named by nothing, keeps its older files) */
+    PetscBool stick;
+    PetscCall(PetscStrcmp(c->lawType, "stick", &stick));
+    if (!stick || c->quadrature != BOLT_QUADRATURE_GAUSS) {
+      PetscCall(PetscSNPrintf(part, sizeof(part), "; contact law %s, %s quadrature", c->lawType, c->quadrature == BOLT_QUADRATURE_NODAL ? "nodal" : "gauss"));
+      PetscCall(PetscStrlcat(fp, part, len));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -145,7 +155,8 @@ static PetscErrorCode BoltROMSavePreloadState(BoltROM *rom, PetscViewer v)
   for (PetscInt e = 0; e < c->nelem; e++) {
     for (PetscInt i = 0; i < 12; i++) buf[BOLT_ROM_STATE * e + i] = rom->lambda0[12 * e + i];
     for (PetscInt i = 0; i < 12; i++) buf[BOLT_ROM_STATE * e + 12 + i] = rom->gap0[12 * e + i];
-    for (PetscInt i = 0; i < 4; i++) buf[BOLT_ROM_STATE * e + 24 + i] = rom->active0[4 * e + i] ? 1.0 : 0.0;
+    /* 1 closed, 2 closed and sliding (strict law), 0 open */
+    for (PetscInt i = 0; i < 4; i++) buf[BOLT_ROM_STATE * e + 24 + i] = rom->active0[4 * e + i] ? (rom->released0[4 * e + i] ? 2.0 : 1.0) : 0.0;
   }
   PetscCall(BoltHDF5WriteValues(v, rom->comm, "state", BOLT_ROM_STATE * c->nelem, 1, buf, PETSC_FALSE));
   PetscCall(PetscFree(buf));
@@ -164,14 +175,17 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
   PetscCall(PetscFree(keys));
   PetscCall(BoltReadAll(v, rom->comm, "state", &n, &x));
   PetscCheck(n == BOLT_ROM_STATE * ix.n, rom->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged (preloaded state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements): rebuild it with -rom_rebuild", file, n, ix.n);
-  PetscCall(PetscMalloc3(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0));
+  PetscCall(PetscMalloc4(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0, 4 * c->nelem + 1, &rom->released0));
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscInt row;
     PetscCall(BoltKeyIndexFind(&ix, c->elem[e].key, &row));
     PetscCheck(row >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for contact element %" PetscInt_FMT ": rebuild it with -rom_rebuild", file, c->elem[e].key);
     for (PetscInt i = 0; i < 12; i++) rom->lambda0[12 * e + i] = x[BOLT_ROM_STATE * row + i];
     for (PetscInt i = 0; i < 12; i++) rom->gap0[12 * e + i] = x[BOLT_ROM_STATE * row + 12 + i];
-    for (PetscInt i = 0; i < 4; i++) rom->active0[4 * e + i] = x[BOLT_ROM_STATE * row + 24 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
+    for (PetscInt i = 0; i < 4; i++) {
+      rom->active0[4 * e + i]   = x[BOLT_ROM_STATE * row + 24 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
+      rom->released0[4 * e + i] = x[BOLT_ROM_STATE * row + 24 + i] == 2 ? PETSC_TRUE : PETSC_FALSE;
+    }
   }
   rom->preloadState = PETSC_TRUE;
   PetscCall(BoltKeyIndexDestroy(&ix));

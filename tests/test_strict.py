@@ -101,3 +101,18 @@ def test_strict_joint_where_the_load_opens_it(joint_small, tmp_path, scene):
     assert_one_sided(fom)
     assert fom["solves"] <= 5 * fom["steps"]
     assert fom["active_points"] < fom["contact_points"]
+
+
+def test_rom_file_of_another_law_is_rebuilt(joint_small, tmp_path):
+    """The preloaded state a ROM file holds is per contact point: a file built under the stick
+    law (Gauss points) is rebuilt, not reused, under the strict law (nodal points)."""
+    mesh, _ = joint_small
+    rom_file = tmp_path / "joint.rom.h5"
+    # one penalty for both laws, so that only the law tells the files apart
+    common = SCENE + ["-mesh", mesh, "-fom", "false", "-rom", "true", "-ts_end", "0.001", "-rom_file", str(rom_file),
+                      "-output", "false", "-contact_penalty_factor", "1e4"]
+    first = run_summary(common + ["-contact_law", "stick"], tmp_path / "a")
+    again = run_summary(common + ["-contact_law", "stick"], tmp_path / "b")
+    strict = run_summary(common + STRICT, tmp_path / "c")
+    assert first["rom"]["source"] == "built" and again["rom"]["source"] == "file"
+    assert strict["rom"]["source"] == "built"
