@@ -82,6 +82,7 @@ run: deps all $(MESH_LEVEL1)
 
 # FOM against ROM (same run) per mesh level, and a sweep of ROM settings.
 bench: deps all
+	$(PYTHON) scripts/bench-contact --np $(NP) --level $(LEVEL)
 	$(PYTHON) scripts/bench-rom --np $(NP) --levels $(LEVELS)
 
 # The paper's figures 3-6, table 3 and the eigenfrequency table, into output/paper/.

@@ -152,7 +152,7 @@ typedef struct {
                                          through the nodes; BOLT_OPEN_GAUSS: on its own multiplier */
   PetscInt            quadrature;     /* BOLT_QUADRATURE_GAUSS (2x2) or _NODAL (points at the nodes) */
   PetscReal           hMin;           /* shortest edge of a contact face (global) */
-  PetscReal           gapTolerance;   /* default penetration tolerance of the strict law [m]: 1e-10 hMin */
+  PetscReal           gapTolerance;   /* default gap tolerance of the strict law [m]: 1e-9 hMin */
   PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
   PetscInt           *elemLocal;      /* 24 per element: index in the local contact vector, -1 if clamped */
   PetscInt            nlocal;         /* length of the local contact vector */

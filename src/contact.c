@@ -39,12 +39,13 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
     const char *open[] = {"nodal", "gauss"};
     PetscCall(PetscOptionsEList("-contact_open_test", "Stick law: when a closed point opens: nodal (its normal traction smoothed through the nodes, nodal force / nodal area, is tensile beyond the band) or gauss (its own multiplier is)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
   }
-  PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m] (default: strict 1e-10 x the shortest contact-face edge, stick 1e-7)", NULL, c->activationGap, &c->activationGap, &set));
+  if (c->activationGap < 0 && !law.strict) c->activationGap = 1e-7;
+  PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m] (default: strict 1e-9 x the shortest contact-face edge, stick 1e-7)", NULL, c->activationGap, &c->activationGap, &set));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscOptionsEnd();
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
   PetscCheck(!set || c->activationGap >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_activation_gap must be >= 0 (got %g)", (double)c->activationGap);
-  if (!set) c->activationGap = law.strict ? -1 : 1e-7; /* strict: set from the mesh in SetUp */
+  if (!set && law.strict) c->activationGap = -1; /* set from the mesh in SetUp */
   PetscCheck(!law.strict || c->augment, c->mesh->comm, PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
   PetscFunctionReturn(0);
 }
@@ -330,8 +331,9 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
     }
   }
   PetscCall(MPIU_Allreduce(&hContact, &c->hMin, 1, MPIU_REAL, MPI_MIN, m->comm));
-  /* the strict law's tolerance on a gap: far below what the acceptance of a contact solution
-     asks (1e-9 of the element size), far above the round-off of the displacements */
+  /* the strict law's tolerance on a gap: 1e-9 of the shortest contact-face edge, so of every
+     element's size; far above the round-off of the displacements, and its traction error
+     (the gap times the structure's stiffness per area) is pascals */
   c->gapTolerance = 1e-9 * (c->npairs ? c->hMin : 1.0);
   if (c->activationGap < 0) c->activationGap = c->gapTolerance;
   PetscCall(PetscLogEventEnd(boltLog.contactSetUp, 0, 0, 0, 0));

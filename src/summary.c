@@ -85,6 +85,8 @@ static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIIn
   PetscCall(BoltJSONInt(j, "dofs", 3 * mesh->nverticesGlobal));
   PetscCall(BoltJSONInt(j, "free_dofs", mesh->ndofsFree));
   PetscCall(BoltJSONInt(j, "contact_dofs", contact->contactDofs));
+  PetscCall(BoltJSONString(j, "contact_law", contact->lawType));
+  PetscCall(BoltJSONReal(j, "contact_gap_tolerance", contact->gapTolerance));
   PetscCall(SummaryNamed(j, "contact_dofs_per_pair", contact->npairs, contact->pairName, contact->contactDofsPerPair, NULL));
   PetscCall(SummaryNamed(j, "contact_elements_per_pair", contact->npairs, contact->pairName, contact->elementsPerPair, NULL));
   PetscCall(SummaryNamed(j, "contact_area_per_pair", contact->npairs, contact->pairName, NULL, contact->areaPerPair));
