@@ -37,7 +37,7 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsReal("-newmark_gamma", "Newmark gamma", NULL, nm->gamma, &nm->gamma, NULL));
   PetscCall(PetscOptionsEnum("-load_history", "Time history of the external load: step (on from t > 0) or sine", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
   PetscCall(PetscOptionsReal("-load_frequency", "Frequency of the sine load [Hz]", NULL, nm->frequency, &nm->frequency, NULL));
-  PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
+  PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload (added after the preload is calibrated alone)", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
   PetscCall(PetscOptionsBool("-preload_calibrate", "Scale the preload layer forces so that the bolt clamps with -preload_force (the layer between them is elastic)", NULL, nm->calibratePreload, &nm->calibratePreload, NULL));
   PetscCall(PetscOptionsInt("-snapshot_every", "Keep the displacement field every this many steps for ParaView (0: none)", NULL, nm->snapshotEvery, &nm->snapshotEvery, NULL));
   PetscCall(PetscOptionsBool("-monitor", "Print a line per time step", NULL, nm->monitor, &nm->monitor, NULL));
@@ -92,11 +92,24 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
   PetscFunctionBeginUser;
   nm->step = 0;
   PetscCall(VecCopy(nm->op->preload, nm->rhs));
-  if (nm->staticWithLoad) PetscCall(VecAXPY(nm->rhs, 1.0, nm->op->load));
-  PetscCall(BoltDualSolveStatic(nm->dual, nm->rhs, nm->q, (nm->calibratePreload && !nm->staticWithLoad) ? nm->preloadTarget : 0, &nout, &nin));
-  nm->preloadScale = nm->dual->preloadScale;
-  nm->staticOuter  = nout;
-  nm->staticInner  = nin;
+  if (nm->staticWithLoad && nm->calibratePreload && nm->preloadTarget > 0) {
+    /* the preload is calibrated on its own (the load changes the pair forces), then the load
+       is added to the calibrated preload, from that state */
+    PetscInt nout0, nin0;
+    PetscCall(BoltDualSolveStatic(nm->dual, nm->rhs, nm->q, nm->preloadTarget, &nout0, &nin0));
+    nm->preloadScale = nm->dual->preloadScale;
+    PetscCall(VecCopy(nm->op->preload, nm->rhs));
+    PetscCall(VecAXPY(nm->rhs, 1.0, nm->op->load));
+    PetscCall(BoltDualSolveStatic(nm->dual, nm->rhs, nm->q, 0, &nout, &nin));
+    nout += nout0;
+    nin += nin0;
+  } else {
+    if (nm->staticWithLoad) PetscCall(VecAXPY(nm->rhs, 1.0, nm->op->load));
+    PetscCall(BoltDualSolveStatic(nm->dual, nm->rhs, nm->q, nm->calibratePreload ? nm->preloadTarget : 0, &nout, &nin));
+    nm->preloadScale = nm->dual->preloadScale;
+  }
+  nm->staticOuter = nout;
+  nm->staticInner = nin;
   PetscCall(VecZeroEntries(nm->v));
   PetscCall(VecZeroEntries(nm->acc));
   PetscFunctionReturn(0);

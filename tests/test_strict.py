@@ -116,3 +116,17 @@ def test_rom_file_of_another_law_is_rebuilt(joint_small, tmp_path):
     strict = run_summary(common + STRICT, tmp_path / "c")
     assert first["rom"]["source"] == "built" and again["rom"]["source"] == "file"
     assert strict["rom"]["source"] == "built"
+
+
+def test_static_load_keeps_the_calibrated_preload(joint_small, tmp_path):
+    """With the load in the static solve the preload is still calibrated alone: the same layer
+    forces as without the load, and the pair forces differ from the preload by the load's share."""
+    mesh, _ = joint_small
+    s = {}
+    for w in ("false", "true"):
+        s[w] = run_summary(SCENE + STRICT + ["-mesh", mesh, "-ts_end", "1e-4", "-output", "false",
+                                             "-static_contact_load", w], tmp_path / w)["preload"]
+    assert s["true"]["layer_force_scale"] == pytest.approx(s["false"]["layer_force_scale"], rel=1e-12)
+    assert s["false"]["layer_force_scale"] > 1  # the stud's layer takes part of the applied force
+    for pair, f in s["true"]["normal_force_per_pair"].items():
+        assert abs(-f - 20000) < 20, (pair, f)  # 10 N of load moves no pair force by more than 20 N
