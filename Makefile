@@ -17,7 +17,7 @@ SLEPC_VARS := $(wildcard $(SLEPC_DIR)/lib/slepc/conf/slepc_variables)
 ifeq ($(SLEPC_VARS),)
 # Nothing installed yet: install the stack, then run the same goal again.
 .DEFAULT_GOAL := all
-all bin/boltrom run test bench mesh tests-c verify stress paper options:
+all bin/boltrom run test bench mesh tests-c verify stress stress-strict paper options:
 	bash scripts/install-deps
 	$(MAKE) $@
 else
@@ -94,6 +94,11 @@ stress: deps all
 	$(PYTHON) scripts/stress --np $(NP)
 	$(PYTHON) scripts/stress-fom --np $(NP)
 
+# The strict contact law's FOM over the stress envelope (level 0.5) and the paper-step scene over
+# mesh levels 0.5 and 1, one rank and one run at a time (output/stress-strict/, docs/results.md).
+stress-strict: deps all
+	$(PYTHON) scripts/stress-strict --results
+
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all
 	$(PYTHON) scripts/verify-model --levels 1 2 3 --np $(NP)
@@ -108,5 +113,5 @@ options: deps all
 clean:
 	rm -rf build bin
 
-.PHONY: all deps run test mesh clean tests-c verify bench stress paper options
+.PHONY: all deps run test mesh clean tests-c verify bench stress stress-strict paper options
 endif

@@ -39,8 +39,10 @@ def provenance(command, seconds=None):
     return f"Measured by `{command}` on commit {commit()}, {datetime.date.today().isoformat()}{took}."
 
 
-def replace_section(text, name, body, title=None):
-    """text with the section NAME's content replaced by body (appended if absent)."""
+def replace_section(text, name, body, title=None, after=None):
+    """text with the section NAME's content replaced by body. If absent, it is appended at the end,
+    or, with after (the text of a level-2 heading, or its start), put before the level-2 heading
+    that follows that section (at the end if none follows, or if that heading is not found)."""
     begin, end = f"<!-- {name} begin -->", f"<!-- {name} end -->"
     block = f"{begin}\n{body.strip()}\n{end}"
     i, j = text.find(begin), text.find(end)
@@ -49,14 +51,22 @@ def replace_section(text, name, body, title=None):
     if i >= 0 or j >= 0:
         raise ValueError(f"section {name}: its begin and end markers are not a pair")
     head = f"## {title or name}\n\n" if title is not False else ""
+    if after is not None:
+        lines = text.splitlines(keepends=True)
+        at = next((k for k, line in enumerate(lines) if line.startswith("## " + after)), None)
+        if at is not None:
+            nxt = next((k for k in range(at + 1, len(lines)) if lines[k].startswith("## ")), None)
+            if nxt is not None:
+                return "".join(lines[:nxt]) + head + block + "\n\n" + "".join(lines[nxt:])
     return text.rstrip("\n") + "\n\n" + head + block + "\n"
 
 
-def write_section(name, body, title=None, path=RESULTS):
-    """Replaces the section NAME of docs/results.md (or path) with body, atomically."""
+def write_section(name, body, title=None, path=RESULTS, after=None):
+    """Replaces the section NAME of docs/results.md (or path) with body, atomically (a new section
+    goes after the section headed after, see replace_section, or at the end)."""
     path = Path(path)
     text = path.read_text() if path.exists() else "# Measured results\n"
-    new = replace_section(text, name, body, title)
+    new = replace_section(text, name, body, title, after)
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(new)
     tmp.replace(path)
