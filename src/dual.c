@@ -285,8 +285,8 @@ PetscErrorCode BoltDualSetFromOptions(BoltDual *d)
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Contact loop", "boltrom");
   PetscCall(PetscOptionsFList("-contact_inner", "Inner loop: uzawa (augmentations, as the paper) or cg (conjugate gradients on the multipliers, same fixed point, fewer solves)", "BoltDual", BoltDualInnerList, d->innerType, d->innerType, sizeof(d->innerType), NULL));
-  PetscCall(PetscOptionsInt("-contact_max_outer", "Outer (active set) iterations per step", NULL, d->maxOuter, &d->maxOuter, NULL));
-  PetscCall(PetscOptionsInt("-contact_max_inner", "Inner (augmentation) iterations per outer iteration", NULL, d->maxInner, &d->maxInner, NULL));
+  PetscCall(PetscOptionsInt("-contact_max_outer", "Outer (active set) iterations per step (strict law: active sets per step)", NULL, d->maxOuter, &d->maxOuter, NULL));
+  PetscCall(PetscOptionsInt("-contact_max_inner", "Inner (augmentation) iterations per outer iteration (strict law: solves per step)", NULL, d->maxInner, &d->maxInner, NULL));
   PetscCall(PetscOptionsReal("-contact_tol_lambda", "Tolerance on the relative change of the multipliers", NULL, d->tolLambda, &d->tolLambda, NULL));
   PetscCall(PetscOptionsReal("-contact_tol_penetration", "Tolerance on the largest penetration of an active point [m] (strict law: on the largest gap of a closed pair; default 1e-9 x the shortest contact-face edge; stick law: 1e-9 m)", NULL, d->tolPenetration, &d->tolPenetration, &d->tolPenetrationSet));
   PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, d->warmStart, &d->warmStart, NULL));
