@@ -220,6 +220,7 @@ PetscErrorCode BoltContactStateTractionStats(BoltContactState *, PetscReal *, Pe
 PetscErrorCode BoltContactStateDot(BoltContactState *, const PetscReal[], const PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStatePenetration(BoltContactState *, PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStateCountActive(BoltContactState *);
+PetscErrorCode BoltContactStateCountSliding(BoltContactState *, PetscInt *);
 PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
 PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
 #define BOLT_CONTACT_PACK 40 /* values per element of BoltContactStatePack */
@@ -621,7 +622,7 @@ typedef struct {
   BoltNewmark    *fomRun;                        /* "preload" and "fom": the FOM's run */
   PetscReal       preloadForce[BOLTROM_MAX_PAIRS]; /* the FOM's preloaded state, before its transient */
   PetscReal       tractionStats[3], preloadPenetration, preloadChange;
-  PetscInt        preloadActive;
+  PetscInt        preloadActive, preloadSliding;
   BoltROM        *rom;                           /* "rom": the reduced model and its run */
   BoltNewmark    *romRun;
   PetscBool       romCheckS0;

@@ -77,6 +77,17 @@ PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *s)
   PetscFunctionReturn(0);
 }
 
+/* Closed points that slide (strict law: they have opened once), global. */
+PetscErrorCode BoltContactStateCountSliding(BoltContactState *s, PetscInt *nsliding)
+{
+  PetscInt n = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < 4 * s->set->nelem; i++) n += (s->active[i] && s->released[i]) ? 1 : 0;
+  PetscCall(MPIU_Allreduce(&n, nsliding, 1, MPIU_INT, MPI_SUM, s->set->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
 /* nactive from the active flags (after they were set from outside, e.g. a checkpoint). */
 PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
 {

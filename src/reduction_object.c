@@ -53,7 +53,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   o->staticShapes = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-rom_static_shapes", "The augmented ROM (without interface reduction) too: the FOM's preloaded state, its load response and the -rom_closed_krylov vectors join the basis (they carry the closed joint's inertia, which order 1 misses without them)", NULL, o->staticShapes, &o->staticShapes, NULL));
   o->bandScale = 0;
-  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (a wider band helps on fine meshes and where the load opens the joint, and costs accuracy in paper-step: docs/results.md; default 1, or 2e5 under the strict law, whose own band is its solver tolerance)", NULL, o->bandScale, &o->bandScale, NULL));
+  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (a wider band helps on fine meshes and where the load opens the joint, and costs accuracy in paper-step: docs/results.md; default 1, or 2e5 for an interface-reduced ROM under the strict law, whose own band is its solver tolerance)", NULL, o->bandScale, &o->bandScale, NULL));
   PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, red->view, &red->view, NULL));
   PetscOptionsEnd();
   PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);

@@ -38,7 +38,10 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
     PetscCall(BoltJSONEndObject(j));
   }
   if (full) {
+    PetscInt nsliding;
     PetscCall(BoltJSONInt(j, "active_points", nm->op->state->nactive));
+    PetscCall(BoltContactStateCountSliding(nm->op->state, &nsliding));
+    PetscCall(BoltJSONInt(j, "sliding_points", nsliding));
     PetscCall(BoltJSONInt(j, "contact_points", nm->op->contact->ngpGlobal));
   }
   PetscCall(BoltJSONReal(j, "probe_final", nm->probeValue[nm->nsteps]));
@@ -145,6 +148,7 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONReal(j, "traction_normal_max", s->tractionStats[1]));
   PetscCall(BoltJSONReal(j, "traction_tangential_max", s->tractionStats[2]));
   PetscCall(BoltJSONInt(j, "active_points", s->preloadActive));
+  PetscCall(BoltJSONInt(j, "sliding_points", s->preloadSliding));
   PetscCall(SummaryNamed(j, "normal_force_per_pair", contact->npairs, contact->pairName, NULL, s->preloadForce));
   PetscCall(BoltJSONEndObject(j));
   PetscCall(BoltJSONBeginObject(j, "fom"));
