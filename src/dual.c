@@ -370,6 +370,21 @@ static PetscErrorCode BoltDualCalibrate(BoltDual *d, Vec rhs0, Vec q)
   PetscFunctionReturn(0);
 }
 
+/* Anti-cycling (-contact_cycle_close): after a two-set cycle the toggling points are closed, and
+   for the rest of the step points may only close, so the set can only grow and the loop ends. */
+static PetscErrorCode BoltDualCloseOnly(BoltDual *d, PetscBool cycling, PetscInt sets)
+{
+  BoltContactState *s       = d->op->state;
+  PetscInt          nclosed = 0;
+
+  PetscFunctionBeginUser;
+  if (cycling) PetscCall(BoltContactStateCloseCycle(s, &nclosed));
+  s->closeOnly = PETSC_TRUE;
+  d->cycles++;
+  if (d->monitor > 0 || d->cycles <= 10) PetscCall(PetscPrintf(d->op->comm, "%s step %" PetscInt_FMT ", t = %g s: the active set %s after %" PetscInt_FMT " outer iterations; from now on in this step points only close (%" PetscInt_FMT " points re-closed, %" PetscInt_FMT " active)%s\n", d->op->name, d->step, (double)d->time, cycling ? "cycles between two sets" : "has not settled", sets, nclosed, s->nactive, d->cycles == 10 ? "; further cycles are counted, not printed" : ""));
+  PetscFunctionReturn(0);
+}
+
 /* The strict law's loop: the active set and the multipliers are updated together after every
    solve (a primal-dual active-set iteration on the augmented Lagrangian). Each iteration solves
    with the current multipliers and the stiff penalty of the closed pairs, takes the trial
@@ -410,13 +425,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     if (nchanged) {
       sets++;
       refactor = PETSC_TRUE;
-      if (d->closeCycles && !s->closeOnly && (cycling || 2 * sets >= d->maxOuter)) {
-        PetscInt nclosed = 0;
-        if (cycling) PetscCall(BoltContactStateCloseCycle(s, &nclosed));
-        s->closeOnly = PETSC_TRUE;
-        d->cycles++;
-        if (d->monitor > 0 || d->cycles <= 10) PetscCall(PetscPrintf(comm, "%s step %" PetscInt_FMT ", t = %g s: the active set %s after %" PetscInt_FMT " sets; from now on in this step pairs only close (%" PetscInt_FMT " re-closed, %" PetscInt_FMT " active)%s\n", op->name, d->step, (double)d->time, cycling ? "cycles between two sets" : "has not settled", sets, nclosed, s->nactive, d->cycles == 10 ? "; further cycles are counted, not printed" : ""));
-      }
+      if (d->closeCycles && !s->closeOnly && (cycling || 2 * sets >= d->maxOuter)) PetscCall(BoltDualCloseOnly(d, cycling, sets));
     }
     if ((nchanged && (sets > d->maxOuter || (cycling && !d->closeCycles))) || solves >= d->maxInner) {
       d->failures++;
@@ -478,11 +487,7 @@ PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, P
        two-set cycle its toggling points are closed first). The set can then only grow, so the
        loop ends; closed is the side that lets nothing penetrate. */
     if (d->closeCycles && !s->closeOnly && (cycling || 2 * outer >= d->maxOuter)) {
-      PetscInt nclosed = 0;
-      if (cycling) PetscCall(BoltContactStateCloseCycle(s, &nclosed));
-      s->closeOnly = PETSC_TRUE;
-      d->cycles++;
-      if (d->monitor > 0 || d->cycles <= 10) PetscCall(PetscPrintf(comm, "%s step %" PetscInt_FMT ", t = %g s: the active set %s after %" PetscInt_FMT " outer iterations; from now on in this step points only close (%" PetscInt_FMT " points re-closed, %" PetscInt_FMT " active)%s\n", op->name, d->step, (double)d->time, cycling ? "cycles between two sets" : "has not settled", outer, nclosed, s->nactive, d->cycles == 10 ? "; further cycles are counted, not printed" : ""));
+      PetscCall(BoltDualCloseOnly(d, cycling, outer));
       continue;
     }
     if (cycling || outer >= d->maxOuter) {
