@@ -146,6 +146,7 @@ typedef struct {
   BoltContactElement *elem;
   /* defaults of the law (-contact_*), copied into each new state */
   char                lawType[64];    /* -contact_law: a BoltContactLawList entry */
+  BoltContactLaw      law;            /* its functions and properties */
   PetscBool           augment;        /* -contact_augment: augmented Lagrangian (false: pure penalty) */
   PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
   PetscInt            openTest;       /* BOLT_OPEN_NODAL: a closed point opens on its traction smoothed

@@ -21,17 +21,17 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
 
 PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
 {
-  BoltContactLaw law;
-  const char    *quad[] = {"gauss", "nodal"};
+  BoltContactLaw *law = &c->law;
+  const char     *quad[] = {"gauss", "nodal"};
   PetscBool      set;
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactLawRegisterAll());
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
   PetscCall(PetscOptionsFList("-contact_law", "Contact law: strict (one-sided contact at every node pair, closed pairs stick; active-set loop) or stick (the paper's: Gauss points, opening band, penalty 200 E/m)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
-  PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, &law)); /* an unknown law fails here, before any solve */
-  c->penaltyFactor = law.penaltyFactor;
-  c->quadrature    = law.strict ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
+  PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, law)); /* an unknown law fails here, before any solve */
+  c->penaltyFactor = law->penaltyFactor;
+  c->quadrature    = law->strict ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m] (default: the law's, strict 3e7, stick 200)", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
   PetscCall(PetscOptionsEList("-contact_quadrature", "Contact points: nodal (one per node pair and face, the strict law's default) or gauss (2x2 per face pair, the stick law's)", NULL, quad, 2, quad[c->quadrature], &c->quadrature, NULL));
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
@@ -39,14 +39,13 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
     const char *open[] = {"nodal", "gauss"};
     PetscCall(PetscOptionsEList("-contact_open_test", "Stick law: when a closed point opens: nodal (its normal traction smoothed through the nodes, nodal force / nodal area, is tensile beyond the band) or gauss (its own multiplier is)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
   }
-  if (c->activationGap < 0 && !law.strict) c->activationGap = 1e-7;
+  if (c->activationGap < 0 && !law->strict) c->activationGap = 1e-7; /* strict: -1 until SetUp knows the mesh */
   PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m] (default: strict 1e-9 x the shortest contact-face edge, stick 1e-7)", NULL, c->activationGap, &c->activationGap, &set));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscOptionsEnd();
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
   PetscCheck(!set || c->activationGap >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_activation_gap must be >= 0 (got %g)", (double)c->activationGap);
-  if (!set && law.strict) c->activationGap = -1; /* set from the mesh in SetUp */
-  PetscCheck(!law.strict || c->augment, c->mesh->comm, PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
+  PetscCheck(!law->strict || c->augment, c->mesh->comm, PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
   PetscFunctionReturn(0);
 }
 
@@ -169,11 +168,9 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
   BoltMesh *m   = c->mesh;
   PetscInt  cap = 256;
 
-  PetscReal      hContact = PETSC_MAX_REAL;
-  BoltContactLaw law;
+  PetscReal hContact = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltContactLawSetType(m->comm, c->lawType, &law));
   PetscCall(PetscLogEventBegin(boltLog.contactSetUp, 0, 0, 0, 0));
   PetscCall(BoltContactFindPairs(c));
   PetscCall(PetscMalloc1(cap, &c->elem));
@@ -327,7 +324,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
       /* stick law: the opening band in traction is that of the default penalty (200 E/m) at the
          activation gap, whatever the penalty: scaled with eps_N, a stiff penalty kept every point
          closed. The strict law has none. */
-      c->bandTraction[p] = law.strict ? 1e-10 * PetscMin(Ea, Eb) : 200.0 * PetscMin(Ea, Eb) * c->activationGap;
+      c->bandTraction[p] = c->law.strict ? 1e-10 * PetscMin(Ea, Eb) : 200.0 * PetscMin(Ea, Eb) * c->activationGap;
     }
   }
   PetscCall(MPIU_Allreduce(&hContact, &c->hMin, 1, MPIU_REAL, MPI_MIN, m->comm));

@@ -14,7 +14,7 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
   PetscCall(PetscNew(&s));
   s->set = c;
   PetscCall(PetscStrncpy(s->lawType, c->lawType, sizeof(s->lawType)));
-  PetscCall(BoltContactLawSetType(c->mesh->comm, s->lawType, &s->law));
+  s->law = c->law; /* looked up once, when the set read -contact_law */
   s->augment       = c->augment;
   s->activationGap = c->activationGap;
   /* the strict law judges a closed pair on its nodal traction (force over tributary area): with

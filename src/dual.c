@@ -370,6 +370,19 @@ static PetscErrorCode BoltDualCalibrate(BoltDual *d, Vec rhs0, Vec q)
   PetscFunctionReturn(0);
 }
 
+/* One solve's outer and inner iterations, returned and added to the loop's counters. */
+static PetscErrorCode BoltDualCount(BoltDual *d, PetscInt outer, PetscInt inner, PetscInt *nouter, PetscInt *ninner)
+{
+  PetscFunctionBeginUser;
+  *nouter = outer;
+  *ninner = inner;
+  d->outerTotal += outer;
+  d->innerTotal += inner;
+  d->outerMax = PetscMax(d->outerMax, outer);
+  d->innerMax = PetscMax(d->innerMax, inner);
+  PetscFunctionReturn(0);
+}
+
 /* Anti-cycling (-contact_cycle_close): after a two-set cycle the toggling points are closed, and
    for the rest of the step points may only close, so the set can only grow and the loop ends. */
 static PetscErrorCode BoltDualCloseOnly(BoltDual *d, PetscBool cycling, PetscInt sets)
@@ -443,12 +456,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     d->worstCompression = PetscMax(d->worstCompression, comp);
     d->worstProduct     = PetscMax(d->worstProduct, prod);
   }
-  *nouter = sets;
-  *ninner = solves;
-  d->outerTotal += sets;
-  d->innerTotal += solves;
-  d->outerMax = PetscMax(d->outerMax, sets);
-  d->innerMax = PetscMax(d->innerMax, solves);
+  PetscCall(BoltDualCount(d, sets, solves, nouter, ninner));
   PetscFunctionReturn(0);
 }
 
@@ -500,12 +508,7 @@ PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, P
       break;
     }
   }
-  *nouter = outer;
-  *ninner = innerTotal;
-  d->outerTotal += outer;
-  d->innerTotal += innerTotal;
-  d->outerMax = PetscMax(d->outerMax, outer);
-  d->innerMax = PetscMax(d->innerMax, innerTotal);
+  PetscCall(BoltDualCount(d, outer, innerTotal, nouter, ninner));
   PetscFunctionReturn(0);
 }
 

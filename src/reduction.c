@@ -327,11 +327,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
      where they then open and close about a hundred times while the FOM's set holds): its
      penalty-law ROM judges with the stick law's band, 200 E x 1e-7 m, i.e. 2e5 times its own.
      A ROM that closes its gaps exactly (no interface reduction) keeps the law's own band. */
-  {
-    BoltContactLaw law;
-    PetscCall(BoltContactLawSetType(rom->comm, contact->lawType, &law));
-    rom->bandScale = o->bandScale > 0 ? o->bandScale : (law.strict && !rom->augment ? 2e5 : 1.0);
-  }
+  rom->bandScale = o->bandScale > 0 ? o->bandScale : (contact->law.strict && !rom->augment ? 2e5 : 1.0);
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
   staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && loads->hasPreload && loads->preloadForce != 0));
   rom->nClosed = staticShapes ? o->nClosed : 0;
