@@ -151,6 +151,7 @@ typedef struct {
   PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
   PetscInt            openTest;       /* BOLT_OPEN_NODAL: a closed point opens on its traction smoothed
                                          through the nodes; BOLT_OPEN_GAUSS: on its own multiplier */
+  PetscBool           reanchor;       /* -contact_reclose stick: a strict-law pair that closes again sticks where it closes */
   PetscInt            quadrature;     /* BOLT_QUADRATURE_GAUSS (2x2) or _NODAL (points at the nodes) */
   PetscReal           hMin;           /* shortest edge of a contact face (global) */
   PetscReal           gapTolerance;   /* default gap tolerance of the strict law [m]: 1e-9 hMin */
@@ -180,7 +181,11 @@ typedef struct {
   PetscReal       epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS], bandTraction[BOLTROM_MAX_PAIRS];
   PetscReal      *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
   PetscBool      *active, *activeOld, *activeOlder;
-  PetscBool      *released;       /* strict law: the point has opened, and slides (normal contact only) when closed */
+  PetscBool      *released;       /* strict law, -contact_reclose slide: the point has opened, and slides (normal contact only) when closed */
+  PetscBool       reanchor;       /* strict law, -contact_reclose stick: a pair that closes again sticks where it closes */
+  PetscReal      *anchor;         /* 3 per point: tangential position where a re-closed pair sticks (0: since the start) */
+  PetscReal      *lambdaForce;    /* 3 per point: lambda - epsT anchor, the multipliers that the solve's forces take */
+  PetscBool       anchored;       /* some local point has a non-zero anchor */
   PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
   PetscBool      *dirty;          /* element whose activity or penalty changed since its Ke was built */
   PetscReal      *Ke;             /* 576 per element: stiffness of its active Gauss points (made when first needed) */
@@ -209,6 +214,9 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **);
 /* contact_state.c: one model's state */
 PetscErrorCode BoltContactStateCreate(BoltContactSet *, BoltContactState **);
 PetscErrorCode BoltContactStateReset(BoltContactState *);
+void             BoltContactStateAnchorGaps(BoltContactState *, PetscReal[]);
+void             BoltContactStateSetAnchors(BoltContactState *, const PetscReal[]);
+const PetscReal *BoltContactStateForceMultipliers(BoltContactState *);
 PetscErrorCode BoltContactStateSetPenaltyScale(BoltContactState *, PetscReal, PetscReal);
 PetscErrorCode BoltContactStateGaps(BoltContactState *);
 PetscErrorCode BoltContactStateAugment(BoltContactState *, PetscReal *, PetscReal *);
@@ -221,10 +229,10 @@ PetscErrorCode BoltContactStateTractionStats(BoltContactState *, PetscReal *, Pe
 PetscErrorCode BoltContactStateDot(BoltContactState *, const PetscReal[], const PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStatePenetration(BoltContactState *, PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStateCountActive(BoltContactState *);
-PetscErrorCode BoltContactStateCountSliding(BoltContactState *, PetscInt *);
+PetscErrorCode BoltContactStateCountReclosed(BoltContactState *, PetscInt *, PetscInt *);
 PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
 PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
-#define BOLT_CONTACT_PACK 40 /* values per element of BoltContactStatePack */
+#define BOLT_CONTACT_PACK 52 /* values per element of BoltContactStatePack */
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
 PetscErrorCode BoltContactStateDestroy(BoltContactState **);
@@ -302,6 +310,7 @@ typedef struct {
   PetscReal *lambda;         /* 12 per local contact element */
   PetscBool *active;         /* 4 per local contact element */
   PetscBool *released;       /* 4 per local contact element */
+  PetscReal *anchor;         /* 12 per local contact element: where re-closed points stick */
   PetscReal  outer, inner;   /* iterations its solve took */
 } BoltPreloadState;
 

@@ -15,6 +15,7 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   PetscCall(PetscStrncpy(c->lawType, "stick", sizeof(c->lawType)));
   c->activationGap  = -1; /* the law's default: SetFromOptions and SetUp fill it in */
   c->matchTolerance = 1e-6;
+  c->reanchor       = PETSC_TRUE; /* the strict law's re-closing pairs stick where they close */
   *cs               = c;
   PetscFunctionReturn(0);
 }
@@ -33,6 +34,12 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   c->penaltyFactor = law->penaltyFactor;
   c->quadrature    = law->strict ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m] (default: the law's, strict 3e7, stick 200)", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
+  {
+    const char *const reclose[] = {"slide", "stick"};
+    PetscInt          rule      = c->reanchor ? 1 : 0;
+    PetscCall(PetscOptionsEList("-contact_reclose", "Strict law: a pair that opened and closes again sticks where it closes (stick) or slides from then on (slide)", NULL, reclose, 2, reclose[rule], &rule, NULL));
+    c->reanchor = rule == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(PetscOptionsEList("-contact_quadrature", "Contact points: nodal (one per node pair and face, the strict law's default) or gauss (2x2 per face pair, the stick law's)", NULL, quad, 2, quad[c->quadrature], &c->quadrature, NULL));
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
   {

@@ -26,6 +26,8 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
     s->bandTraction[p] = c->bandTraction[p];
   }
   PetscCall(PetscCalloc2(12 * ne + 1, &s->lambda, 12 * ne + 1, &s->gap));
+  PetscCall(PetscCalloc2(12 * ne + 1, &s->anchor, 12 * ne + 1, &s->lambdaForce));
+  s->reanchor = c->reanchor;
   PetscCall(PetscMalloc4(4 * ne + 1, &s->active, 4 * ne + 1, &s->activeOld, 4 * ne + 1, &s->activeOlder, 4 * ne + 1, &s->released));
   PetscCall(PetscMalloc1(ne + 1, &s->dirty));
   PetscCall(BoltContactStateReset(s));
@@ -40,6 +42,7 @@ PetscErrorCode BoltContactStateDestroy(BoltContactState **sp)
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(0);
   PetscCall(PetscFree2(s->lambda, s->gap));
+  PetscCall(PetscFree2(s->anchor, s->lambdaForce));
   PetscCall(PetscFree4(s->active, s->activeOld, s->activeOlder, s->released));
   PetscCall(PetscFree(s->dirty));
   PetscCall(PetscFree(s->Ke));
@@ -77,14 +80,21 @@ PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *s)
   PetscFunctionReturn(0);
 }
 
-/* Closed points that slide (strict law: they have opened once), global. */
-PetscErrorCode BoltContactStateCountSliding(BoltContactState *s, PetscInt *nsliding)
+/* Closed points that slide (strict law, -contact_reclose slide: they have opened once), and
+   closed points that stick where they closed again (-contact_reclose stick), global. */
+PetscErrorCode BoltContactStateCountReclosed(BoltContactState *s, PetscInt *nsliding, PetscInt *nanchored)
 {
-  PetscInt n = 0;
+  PetscInt n[2] = {0, 0}, glob[2];
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < 4 * s->set->nelem; i++) n += (s->active[i] && s->released[i]) ? 1 : 0;
-  PetscCall(MPIU_Allreduce(&n, nsliding, 1, MPIU_INT, MPI_SUM, s->set->mesh->comm));
+  for (PetscInt i = 0; i < 4 * s->set->nelem; i++) {
+    const PetscReal *a = &s->anchor[3 * i];
+    n[0] += (s->active[i] && s->released[i]) ? 1 : 0;
+    n[1] += (s->active[i] && (a[0] != 0 || a[1] != 0 || a[2] != 0)) ? 1 : 0;
+  }
+  PetscCall(MPIU_Allreduce(n, glob, 2, MPIU_INT, MPI_SUM, s->set->mesh->comm));
+  *nsliding = glob[0];
+  if (nanchored) *nanchored = glob[1];
   PetscFunctionReturn(0);
 }
 
@@ -100,7 +110,7 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
 }
 
 /* Element e's state as BOLT_CONTACT_PACK values (checkpoints): multipliers (12), gaps (12), the
-   active flags of the last three outer iterations and the released flags (4 each). */
+   active flags of the last three outer iterations and the released flags (4 each), anchors (12). */
 void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
 {
   PetscInt k = 0;
@@ -111,6 +121,7 @@ void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->activeOld[4 * e + i];
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->activeOlder[4 * e + i];
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->released[4 * e + i];
+  for (PetscInt i = 0; i < 12; i++) buf[k++] = s->anchor[12 * e + i];
 }
 
 /* The inverse of BoltContactStatePack; the element is due for a stiffness update. */
@@ -122,6 +133,10 @@ void BoltContactStateUnpack(BoltContactState *s, PetscInt e, const PetscReal buf
   for (PetscInt i = 0; i < 4; i++) s->activeOld[4 * e + i] = buf[28 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
   for (PetscInt i = 0; i < 4; i++) s->activeOlder[4 * e + i] = buf[32 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
   for (PetscInt i = 0; i < 4; i++) s->released[4 * e + i] = buf[36 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt i = 0; i < 12; i++) {
+    s->anchor[12 * e + i] = buf[40 + i];
+    if (buf[40 + i] != 0) s->anchored = PETSC_TRUE;
+  }
   s->dirty[e]    = PETSC_TRUE;
   s->KcAssembled = PETSC_FALSE;
 }
@@ -139,17 +154,20 @@ PetscErrorCode BoltContactStateReset(BoltContactState *s)
   s->KcAssembled = PETSC_FALSE;
   PetscCall(PetscArrayzero(s->lambda, 12 * c->nelem));
   PetscCall(PetscArrayzero(s->gap, 12 * c->nelem));
+  PetscCall(PetscArrayzero(s->anchor, 12 * c->nelem));
+  s->anchored = PETSC_FALSE;
   s->nactive = c->ngpGlobal;
   PetscFunctionReturn(0);
 }
 
-/* Gap vectors g = u_b - u_a at every Gauss point, from uc. */
+/* Gap vectors g = u_b - u_a at every Gauss point, from uc, less the anchors. */
 PetscErrorCode BoltContactStateGaps(BoltContactState *s)
 {
   BoltContactSet *c = s->set;
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactSetGapsOf(c, s->gap));
+  BoltContactStateAnchorGaps(s, s->gap);
   PetscFunctionReturn(0);
 }
 
@@ -185,6 +203,57 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
   *maxPenetration = glob[2];
   PetscFunctionReturn(0);
+}
+
+/* A pair that closes sticks from where it is: its anchor takes the tangential part of its
+   gap (the gaps held are relative to the old anchor). */
+static void BoltContactStateAnchorAt(BoltContactState *s, PetscInt gp)
+{
+  const PetscReal *n = &s->set->gpNormal[3 * gp];
+  PetscReal       *a = &s->anchor[3 * gp], *g = &s->gap[3 * gp], raw[3], gn;
+
+  for (PetscInt k = 0; k < 3; k++) raw[k] = g[k] + a[k];
+  gn = raw[0] * n[0] + raw[1] * n[1] + raw[2] * n[2];
+  for (PetscInt k = 0; k < 3; k++) {
+    a[k] = raw[k] - gn * n[k];
+    g[k] = raw[k] - a[k];
+  }
+  s->anchored = PETSC_TRUE;
+}
+
+/* Anchors of a stored state (NULL: none, every closed point sticks where it started). */
+void BoltContactStateSetAnchors(BoltContactState *s, const PetscReal anchor[])
+{
+  s->anchored = PETSC_FALSE;
+  for (PetscInt k = 0; k < 12 * s->set->nelem; k++) {
+    s->anchor[k] = anchor ? anchor[k] : 0;
+    if (s->anchor[k] != 0) s->anchored = PETSC_TRUE;
+  }
+}
+
+/* Gaps relative to the anchors (after the raw gaps u_b - u_a were computed into gap). */
+void BoltContactStateAnchorGaps(BoltContactState *s, PetscReal gap[])
+{
+  if (!s->anchored) return;
+  for (PetscInt k = 0; k < 12 * s->set->nelem; k++) gap[k] -= s->anchor[k];
+}
+
+/* The multipliers whose forces the solve takes: lambda, less epsT times the anchor where there
+   is one (K_eff's penalty acts on the raw gap, the traction on the anchored one). */
+const PetscReal *BoltContactStateForceMultipliers(BoltContactState *s)
+{
+  BoltContactSet *c = s->set;
+
+  if (!s->anchored) return s->lambda;
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt pair = c->elem[e].pair;
+    for (PetscInt q = 0; q < 4; q++) {
+      const PetscInt  gp = 4 * e + q;
+      const PetscReal eT = s->active[gp] ? BoltContactStateEpsT(s, gp, pair) : 0;
+      for (PetscInt k = 0; k < 3; k++) s->lambdaForce[3 * gp + k] = s->lambda[3 * gp + k] - eT * s->anchor[3 * gp + k];
+    }
+  }
+  return s->lambdaForce;
 }
 
 /* New active set from the trial tractions; counts the points that changed (global) and tells
@@ -242,6 +311,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
            position to return to short of friction with slip history; tied back to where it
            started it would snap, and a pair that opened under tension while sticking can
            penetrate once open, so that stick-open-stick would cycle. */
+        else if (s->law.strict && s->reanchor) BoltContactStateAnchorAt(s, gp);
         else if (s->law.strict) s->released[gp] = PETSC_TRUE;
       }
       s->active[gp] = now;
@@ -291,7 +361,8 @@ PetscErrorCode BoltContactStateCloseCycle(BoltContactState *s, PetscInt *nclosed
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     if (!s->active[gp] && s->activeOld[gp]) {
       s->active[gp]     = PETSC_TRUE;
-      if (s->law.strict) s->released[gp] = PETSC_TRUE;
+      if (s->law.strict && s->reanchor) BoltContactStateAnchorAt(s, gp);
+      else if (s->law.strict) s->released[gp] = PETSC_TRUE;
       s->dirty[gp / 4] = PETSC_TRUE;
       loc[0]++;
     }

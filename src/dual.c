@@ -114,8 +114,9 @@ static PetscErrorCode BoltDualInnerUzawa(BoltDual *d, Vec rhs0, Vec q, PetscInt 
 
   PetscFunctionBeginUser;
   for (inner = 1;; inner++) {
-    PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, q));
+    PetscCall(BoltDualSolveWithForces(d, rhs0, BoltContactStateForceMultipliers(s), q));
     PetscCall(BoltDualGapsOf(d, q, s->gap));
+    BoltContactStateAnchorGaps(s, s->gap);
     PetscCall(BoltContactStateAugment(s, &rel, &pen));
     d->lastChange      = rel;
     d->lastPenetration = pen;
@@ -366,6 +367,7 @@ static PetscErrorCode BoltDualCalibrate(BoltDual *d, Vec rhs0, Vec q)
   for (PetscInt k = 0; k < 12 * c->nelem; k++) {
     s->lambda[k] *= scale;
     s->gap[k] *= scale;
+    s->anchor[k] *= scale; /* the preload's problem is linear in its scale, positions included */
   }
   PetscFunctionReturn(0);
 }
@@ -423,8 +425,9 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
 
     if (refactor) PetscCall(BoltDualFactor(d));
     refactor = PETSC_FALSE;
-    PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, q));
+    PetscCall(BoltDualSolveWithForces(d, rhs0, BoltContactStateForceMultipliers(s), q));
     PetscCall(BoltDualGapsOf(d, q, s->gap));
+    BoltContactStateAnchorGaps(s, s->gap);
     solves++;
     PetscCall(BoltContactStateAugment(s, &rel, &viol));
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(viol), comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", op->name, d->step, (double)d->time);

@@ -76,8 +76,9 @@ PetscErrorCode BoltPreloadStateCreate(BoltOperator *op, Vec q, PetscReal outer, 
   PetscCall(VecCopy(q, st->q));
   PetscCall(VecDuplicate(op->preload, &st->preload));
   PetscCall(VecCopy(op->preload, st->preload));
-  PetscCall(PetscMalloc3(12 * ne + 1, &st->lambda, 4 * ne + 1, &st->active, 4 * ne + 1, &st->released));
+  PetscCall(PetscMalloc4(12 * ne + 1, &st->lambda, 4 * ne + 1, &st->active, 4 * ne + 1, &st->released, 12 * ne + 1, &st->anchor));
   PetscCall(PetscArraycpy(st->lambda, s->lambda, 12 * ne));
+  PetscCall(PetscArraycpy(st->anchor, s->anchor, 12 * ne));
   PetscCall(PetscArraycpy(st->active, s->active, 4 * ne));
   PetscCall(PetscArraycpy(st->released, s->released, 4 * ne));
   st->outer = outer;
@@ -98,6 +99,7 @@ PetscErrorCode BoltPreloadStateApply(const BoltPreloadState *st, BoltOperator *o
   PetscCall(VecCopy(st->preload, op->preload));
   PetscCall(PetscArraycpy(s->lambda, st->lambda, 12 * op->contact->nelem));
   PetscCall(BoltContactStateSetActive(s, st->active, st->released));
+  BoltContactStateSetAnchors(s, st->anchor);
   PetscFunctionReturn(0);
 }
 
@@ -109,7 +111,7 @@ PetscErrorCode BoltPreloadStateDestroy(BoltPreloadState **stp)
   if (!st) PetscFunctionReturn(0);
   PetscCall(VecDestroy(&st->q));
   PetscCall(VecDestroy(&st->preload));
-  PetscCall(PetscFree3(st->lambda, st->active, st->released));
+  PetscCall(PetscFree4(st->lambda, st->active, st->released, st->anchor));
   PetscCall(PetscFree(*stp));
   PetscFunctionReturn(0);
 }

@@ -194,7 +194,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(BoltContactStateGaps(s));
   for (PetscInt k = 0; k < 12 * c->nelem; k++) {
     rom->lambda0[k] = s->lambda[k] / F;
-    rom->gap0[k]    = s->gap[k] / F;
+    rom->gap0[k]    = (s->gap[k] + s->anchor[k]) / F; /* raw: the ROM's frozen multipliers hold any anchor */
   }
   PetscCall(PetscArraycpy(rom->active0, s->active, 4 * c->nelem));
   PetscCall(PetscArraycpy(rom->released0, s->released, 4 * c->nelem));

@@ -298,6 +298,7 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
   const PetscReal g0Share = s->law.strict ? 1.0 : 1 - 1 / rom->penaltyScale;
 
   PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0)); /* sliding points first: their traction is normal */
+  BoltContactStateSetAnchors(s, NULL); /* the FOM's anchors are in the frozen multipliers (raw gaps g0) */
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {

@@ -51,7 +51,7 @@ PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLo
     PetscBool stick;
     PetscCall(PetscStrcmp(c->lawType, "stick", &stick));
     if (!stick || c->quadrature != BOLT_QUADRATURE_GAUSS) {
-      PetscCall(PetscSNPrintf(part, sizeof(part), "; contact law %s, %s quadrature", c->lawType, c->quadrature == BOLT_QUADRATURE_NODAL ? "nodal" : "gauss"));
+      PetscCall(PetscSNPrintf(part, sizeof(part), "; contact law %s, %s quadrature%s", c->lawType, c->quadrature == BOLT_QUADRATURE_NODAL ? "nodal" : "gauss", c->law.strict && c->reanchor ? ", re-closing pairs stick" : ""));
       PetscCall(PetscStrlcat(fp, part, len));
     }
   }

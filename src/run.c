@@ -112,7 +112,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltMemoryPrint(r->comm, "the FOM's preload"));
   PetscCall(BoltContactStateTractionStats(r->fomOp->state, &s->tractionStats[0], &s->tractionStats[1], &s->tractionStats[2]));
   s->preloadActive      = r->fomOp->state->nactive;
-  PetscCall(BoltContactStateCountSliding(r->fomOp->state, &s->preloadSliding));
+  PetscCall(BoltContactStateCountReclosed(r->fomOp->state, &s->preloadSliding, NULL));
   s->preloadPenetration = r->fomNm->dual->lastPenetration;
   s->preloadChange      = r->fomNm->dual->lastChange;
   if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, r->fomNm->q, r->fomNm->staticOuter, r->fomNm->staticInner, &r->fomPreload)); /* the ROM's offline phase starts from it */

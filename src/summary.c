@@ -38,10 +38,11 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
     PetscCall(BoltJSONEndObject(j));
   }
   if (full) {
-    PetscInt nsliding;
+    PetscInt nsliding, nanchored;
     PetscCall(BoltJSONInt(j, "active_points", nm->op->state->nactive));
-    PetscCall(BoltContactStateCountSliding(nm->op->state, &nsliding));
+    PetscCall(BoltContactStateCountReclosed(nm->op->state, &nsliding, &nanchored));
     PetscCall(BoltJSONInt(j, "sliding_points", nsliding));
+    PetscCall(BoltJSONInt(j, "reclosed_points", nanchored));
     PetscCall(BoltJSONInt(j, "contact_points", nm->op->contact->ngpGlobal));
   }
   PetscCall(BoltJSONReal(j, "probe_final", nm->probeValue[nm->nsteps]));
@@ -89,6 +90,7 @@ static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIIn
   PetscCall(BoltJSONInt(j, "free_dofs", mesh->ndofsFree));
   PetscCall(BoltJSONInt(j, "contact_dofs", contact->contactDofs));
   PetscCall(BoltJSONString(j, "contact_law", contact->lawType));
+  if (contact->law.strict) PetscCall(BoltJSONString(j, "contact_reclose", contact->reanchor ? "stick" : "slide"));
   PetscCall(BoltJSONReal(j, "contact_gap_tolerance", contact->gapTolerance));
   PetscCall(SummaryNamed(j, "contact_dofs_per_pair", contact->npairs, contact->pairName, contact->contactDofsPerPair, NULL));
   PetscCall(SummaryNamed(j, "contact_elements_per_pair", contact->npairs, contact->pairName, contact->elementsPerPair, NULL));

@@ -141,3 +141,25 @@ def test_rom_without_interface_reduction_follows_the_strict_fom(joint_small, tmp
                     tmp_path)
     assert s["rom"]["contact_law"] == "augmented" and s["rom"]["contact_band_scale"] == 1
     assert s["errors"]["load_point"]["e_L2"] < 1e-3
+
+
+def test_reclosing_pairs_stick_where_they_close(joint_small, tmp_path):
+    """Under 5 kN of preload a 100 N step opens the rim and lets part of it close again within
+    10 ms. By default a re-closing pair sticks where it closes (reclosed_points), on one and two
+    ranks alike; -contact_reclose slide lets it slide instead. Either way contact stays one-sided."""
+    mesh, _ = joint_small
+    scene = SCENE + STRICT + ["-mesh", mesh, "-ts_end", "0.01", "-preload_force", "5000", "-load_force", "100"]
+    hist = {}
+    for ranks in (1, 2):
+        d = tmp_path / f"stick{ranks}"
+        s = run_summary(scene + ["-output_dir", str(d)], d, ranks=ranks)
+        assert s["contact_reclose"] == "stick"
+        fom = s["fom"]
+        assert_one_sided(fom)
+        assert fom["reclosed_points"] > 0 and fom["sliding_points"] == 0
+        with h5py.File(d / "paper-step.h5") as f:
+            hist[ranks] = np.array(f["fom/probe"])
+    assert np.abs(hist[1] - hist[2]).max() <= 1e-5 * np.abs(hist[1]).max()
+    s = run_summary(scene + ["-output", "false", "-contact_reclose", "slide"], tmp_path / "slide")
+    assert_one_sided(s["fom"])
+    assert s["fom"]["sliding_points"] > 0 and s["fom"]["reclosed_points"] == 0
