@@ -225,6 +225,7 @@ PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
 PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);
+PetscErrorCode BoltContactStateNodalForces(BoltContactState *, Vec);
 PetscErrorCode BoltContactStateTractionStats(BoltContactState *, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode BoltContactStateDot(BoltContactState *, const PetscReal[], const PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStatePenetration(BoltContactState *, PetscReal[], PetscReal *);

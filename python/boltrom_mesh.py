@@ -11,6 +11,10 @@ Kinds
 ``beam``    a monolithic cantilever plate (verification against beam theory).
 ``block``   a 3 x 3 x 3 patch-test block with distorted interior nodes.
 ``blocks``  two stacked blocks with one node-to-node contact pair.
+``punch``   a stiff block on a thin layer clamped at its bottom, one contact
+            pair between them and a load strip off-centre on the block's top
+            (eccentric flat punch: the strict law's test with a known contact
+            length, tests/test_punch.py).
 
 Contract with the C code (physical groups)
 -----------------------------------------
@@ -25,6 +29,8 @@ numeric physical tags are fixed (volumes 1, 2, ..., surfaces 101, ..., points
     beam  : 1 plate, 101 clamp, 102 tip, 201 load_point
     block : 1 block, 101 boundary, 102 clamp
     blocks: 1 lower, 2 upper, 101/102 contact_upper_lower_a/_b, 103 clamp, 104 top
+    punch : 1 layer, 2 punch, 101/102 contact_punch_layer_a/_b, 103 clamp, 104 top,
+            105 load_strip
 
 How PETSc 3.18 (DMPlexCreateFromFile, interpolate) labels them:
     default: "Cell Sets" (value = volume tag) and "Face Sets" (value = surface
@@ -41,6 +47,7 @@ How PETSc 3.18 (DMPlexCreateFromFile, interpolate) labels them:
 dim 3 (hexahedra, gmsh type 5), one group per part, named after the part:
     joint : plate1, plate2, bolt, washer_head, washer_nut, nut
     beam  : plate          block : block          blocks: lower, upper
+    punch : layer, punch
 dim 2 (quadrangles, gmsh type 3):
     contact_<pair>_a, contact_<pair>_b   the two sides of a contact pair.
         Side a is the upper body (larger z).  Both sides list their faces in
@@ -55,14 +62,21 @@ dim 2 (quadrangles, gmsh type 3):
             plate1_washer  plate1 bottom        / washer_nut top,  r 5.5..10 mm,   z 0
             washer_nut     washer_nut bottom    / nut top,         r 5.25..8.5 mm, z -0.002
         blocks pair: upper_lower (upper block bottom / lower block top, z 0.01)
+        punch pair: punch_layer (punch bottom / layer top, z = layer thickness)
     clamp          joint: plate1 face x = 0; beam, block: face x = 0;
-                   blocks: the lower block's face z = 0.  Outward normals.
+                   blocks: the lower block's face z = 0; punch: the layer's
+                   face z = 0.  Outward normals.
     preload_lower, preload_upper   (joint) the shank cross-sections at
                    z = 0.008 - h/2 and 0.008 + h/2 that bound exactly one
                    element layer of height h; face normals point +z.
     tip            (beam) face x = L, outward normal.
     boundary       (block) all six outer faces, outward normals.
-    top            (blocks) the upper block's face z = 0.02, outward normal.
+    top            (blocks) the upper block's face z = 0.02, (punch) the punch's
+                   top face; outward normal.
+    load_strip     (punch) the punch's top faces whose centres lie within one
+                   element of x = eccentricity (one or two columns of faces,
+                   symmetric about it: the resultant of a force spread on them
+                   by area acts at x = eccentricity).
 dim 0 (points, gmsh type 15), on existing nodes:
     load_point     joint: (0.260, 0, 0.016) on plate2; beam: (L, 0, 0.008).
     corner_point   joint: (0.260, 0.020, 0.016) on plate2.
@@ -560,8 +574,48 @@ def build_blocks(level=1.0, n=None, size=0.01):
     return mesh
 
 
+# The eccentric flat punch: x across the width (centre x = 0), y along the depth, z up.
+PUNCH = dict(width=0.040, depth=0.004, layer_t=0.001, height=0.020, eccentricity=0.0125,
+             elements=(40, 2, 2, 4))  # nx, ny, layer nz, punch nz at level 1
+
+
+def build_punch(level=1.0, eccentricity=None, layer_t=None):
+    """A punch (width b, depth d, height H) on a layer of the same footprint and thickness t,
+    clamped at z = 0, meshed node to node at z = t; the load strip on the punch's top is
+    centred on x = eccentricity, which must lie on a node or half-way between two."""
+    nx, ny, nzl, nzp = (max(1, _round_half_up(n * level)) for n in PUNCH["elements"])
+    nx += nx % 2  # a node at x = 0, so that e lies on the node grid or half-way
+    b, d, H = PUNCH["width"], PUNCH["depth"], PUNCH["height"]
+    t = PUNCH["layer_t"] if layer_t is None else float(layer_t)
+    e = PUNCH["eccentricity"] if eccentricity is None else float(eccentricity)
+    h = b / nx
+    if not (0 < t and abs(e) < b / 2) or abs(2 * e / h - round(2 * e / h)) > 1e-6:
+        raise ValueError("punch: need t > 0 and |eccentricity| < %g on a node or half-way "
+                         "between two (element %g m)" % (b / 2, h))
+    mesh = HexMesh("punch", level)
+    P = grid(b / 2 * (2.0 * np.arange(nx + 1) - nx) / nx, d / 2 * (2.0 * np.arange(ny + 1) - ny) / ny)
+    mesh.add_merge_group([("layer",) + extrude(P, np.linspace(0.0, t, nzl + 1))])
+    mesh.add_merge_group([("punch",) + extrude(P, np.linspace(t, t + H, nzp + 1))])
+    mesh.finish()
+    Fa = faces(mesh, "punch", lambda x, y, z: np.abs(z - t) < TOL, which=[0])
+    Fb = faces(mesh, "layer", lambda x, y, z: np.abs(z - t) < TOL, which=[1])
+    Fa, Fb = match_pair(mesh.coords, Fa, Fb)
+    mesh.surfaces["contact_punch_layer_a"] = Fa
+    mesh.surfaces["contact_punch_layer_b"] = Fb
+    mesh.pairs.append("punch_layer")
+    mesh.surfaces["clamp"] = faces(mesh, "layer", lambda x, y, z: np.abs(z) < TOL)
+    top = faces(mesh, "punch", lambda x, y, z: np.abs(z - t - H) < TOL, which=[1])
+    mesh.surfaces["top"] = top
+    xc = mesh.coords[top][..., 0].mean(axis=1)
+    mesh.surfaces["load_strip"] = top[np.abs(xc - e) < h - TOL]
+    mesh.info = dict(elements=[nx, ny, nzl, nzp], width=b, depth=d, layer_thickness=t,
+                     height=H, eccentricity=e)
+    return mesh
+
+
 def build(kind="joint", level=1.0, **kw):
-    builders = dict(joint=build_joint, beam=build_beam, block=build_block, blocks=build_blocks)
+    builders = dict(joint=build_joint, beam=build_beam, block=build_block, blocks=build_blocks,
+                    punch=build_punch)
     if kind not in builders:
         raise ValueError("unknown kind %r" % kind)
     return builders[kind](level=level, **{k: v for k, v in kw.items() if v is not None})
@@ -715,7 +769,7 @@ def main(argv=None):
         prog="mesh-joint",
         description="All-hex meshes for boltrom (gmsh MSH 4.1). See python/boltrom_mesh.py "
                     "for the physical-group contract.")
-    ap.add_argument("--kind", choices=("joint", "beam", "block", "blocks"), default="joint")
+    ap.add_argument("--kind", choices=("joint", "beam", "block", "blocks", "punch"), default="joint")
     ap.add_argument("--level", type=float, default=1.0,
                     help="refinement level (float; node layers scale by about LEVEL)")
     ap.add_argument("--output", "-o", required=True, help="output .msh file")
@@ -729,6 +783,10 @@ def main(argv=None):
     ap.add_argument("--block-elements", type=int,
                     help="blocks: elements per edge of each block (default round(2 level))")
     ap.add_argument("--seed", type=int, help="block: random seed of the perturbation")
+    ap.add_argument("--punch-eccentricity", type=float,
+                    help="punch: x of the load strip's centre (m), on a node or half-way "
+                         "between two; default 0.0125")
+    ap.add_argument("--punch-layer", type=float, help="punch: layer thickness (m), default 0.001")
     a = ap.parse_args(argv)
     if a.level <= 0:
         ap.error("--level must be positive")
@@ -744,6 +802,8 @@ def main(argv=None):
         kw = dict(seed=a.seed)
     elif a.kind == "blocks":
         kw = dict(n=a.block_elements)
+    elif a.kind == "punch":
+        kw = dict(eccentricity=a.punch_eccentricity, layer_t=a.punch_layer)
     try:
         mesh = build(a.kind, a.level, **kw)
     except ValueError as e:

@@ -444,6 +444,23 @@ PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *s, PetscReal
   PetscFunctionReturn(0);
 }
 
+/* The nodal forces the contact tractions exert on the structure, -B' t, in the global layout of
+   F (both sides of every pair). For the output: they are what balances the loads, node by node,
+   where the tractions are per contact point. */
+PetscErrorCode BoltContactStateNodalForces(BoltContactState *s, Vec F)
+{
+  BoltContactSet *c = s->set;
+
+  PetscFunctionBeginUser;
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) BoltContactStateTraction(s, gp / 4, gp, &c->tau[3 * gp]);
+  PetscCall(BoltContactSetForcesOf(c, c->tau));
+  PetscCall(VecZeroEntries(F));
+  PetscCall(VecScatterBegin(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScale(F, -1.0)); /* B' t is on the right-hand side with a minus */
+  PetscFunctionReturn(0);
+}
+
 /* Min and max normal traction over active points, and the largest tangential traction. */
 PetscErrorCode BoltContactStateTractionStats(BoltContactState *s, PetscReal *tnMin, PetscReal *tnMax, PetscReal *ttMax)
 {

@@ -231,7 +231,12 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
   PetscCall(BoltOutputVertexField(&h5, mesh, loads->load, "load"));
   if (loads->hasPreload) PetscCall(BoltOutputVertexField(&h5, mesh, loads->preload, "preload"));
   if (fom) {
+    Vec fc;
     PetscCall(BoltOutputVertexField(&h5, mesh, fom->q, "fom_final_displacement"));
+    PetscCall(VecDuplicate(fom->q, &fc));
+    PetscCall(BoltContactStateNodalForces(fom->op->state, fc));
+    PetscCall(BoltOutputVertexField(&h5, mesh, fc, "fom_final_contact_force"));
+    PetscCall(VecDestroy(&fc));
     PetscCall(BoltOutputSeries(&h5, "/fom", "time", fom->nsteps + 1, fom->probeTime));
     PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fom->nsteps + 1, fom->probeValue));
     PetscCall(BoltOutputSeries(&h5, "/fom", "energy", fom->nsteps + 1, fom->energy));

@@ -315,6 +315,35 @@ def test_blocks(tmp_path):
     assert np.abs(m.xyz[m.conn["top"]][..., 2] - 0.02).max() < 1e-12
 
 
+def test_punch(tmp_path):
+    e = 0.0125
+    mesh = bm.build_punch(1.0, eccentricity=e)
+    path = str(tmp_path / "punch.msh")
+    bm.write_msh(mesh, path)
+    m = Msh(path)
+    b, d, t, H = 0.040, 0.004, 0.001, 0.020
+    assert len(m.conn["layer"]) == 40 * 2 * 2 and len(m.conn["punch"]) == 40 * 2 * 4
+    assert abs(bm.hex_volumes(m.xyz, m.conn["layer"]).sum() - b * d * t) < 1e-18
+    assert abs(bm.hex_volumes(m.xyz, m.conn["punch"]).sum() - b * d * H) < 1e-15
+    Fa, Fb = m.conn["contact_punch_layer_a"], m.conn["contact_punch_layer_b"]
+    assert len(Fa) == 80 and np.abs(m.xyz[Fa] - m.xyz[Fb]).max() < 1e-12
+    assert np.isin(Fa, m.nodes("punch")).all() and np.isin(Fb, m.nodes("layer")).all()
+    assert np.abs(m.xyz[Fa][..., 2] - t).max() < 1e-12
+    assert len(np.intersect1d(m.nodes("layer"), m.nodes("punch"))) == 0
+    assert np.abs(m.xyz[m.conn["clamp"]][..., 2]).max() < 1e-12
+    assert np.abs(m.xyz[m.conn["top"]][..., 2] - t - H).max() < 1e-12
+    # the load strip: top faces whose area centre is x = e (one column of faces here)
+    strip = m.xyz[m.conn["load_strip"]]
+    assert len(strip) == 2 and np.abs(strip[..., 2] - t - H).max() < 1e-12
+    assert abs(strip[..., 0].mean() - e) < 1e-12
+    other = bm.build_punch(1.0, eccentricity=-0.005)  # on a node: two columns of faces
+    on_node = other.coords[other.surfaces["load_strip"]]
+    assert len(on_node) == 4 and abs(on_node[..., 0].mean() + 0.005) < 1e-12
+    for bad in (0.0123, 0.021):
+        with pytest.raises(ValueError):
+            bm.build_punch(1.0, eccentricity=bad)
+
+
 def test_petsc_reads_labels(tmp_path):
     PETSc = pytest.importorskip("petsc4py.PETSc")
     path, rep, _ = write_joint(tmp_path, 0.5)
