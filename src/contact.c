@@ -12,7 +12,7 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   PetscCall(PetscNew(&c));
   c->mesh           = mesh;
   c->augment        = PETSC_TRUE;
-  PetscCall(PetscStrncpy(c->lawType, "stick", sizeof(c->lawType)));
+  PetscCall(PetscStrncpy(c->lawType, "strict", sizeof(c->lawType)));
   c->activationGap  = -1; /* the law's default: SetFromOptions and SetUp fill it in */
   c->matchTolerance = 1e-6;
   c->reanchor       = PETSC_TRUE; /* the strict law's re-closing pairs stick where they close */

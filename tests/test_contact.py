@@ -1,12 +1,13 @@
-"""Contact and the full-order transient: patch test, opening, energy, preload equilibrium,
-rank independence and non-convergence reporting."""
+"""Contact and the full-order transient under the paper's contact law (-contact_law stick): patch
+test, opening, energy, preload equilibrium, rank independence and non-convergence reporting. The
+strict law, the default, has its own in test_strict.py."""
 import h5py
 import numpy as np
 import pytest
 
 from conftest import ROOT, assert_uniform_contact, make_mesh, run_boltrom, run_summary
 
-FOM = ["-fom", "-static", "false", "-modal_nev", "0"]
+FOM = ["-fom", "-static", "false", "-modal_nev", "0", "-contact_law", "stick"]
 
 
 @pytest.fixture(scope="module")

@@ -64,11 +64,13 @@ def test_restart_reproduces_the_uninterrupted_run(restart_runs):
 
 
 def test_restart_on_other_ranks(restart_runs):
-    """A 1-rank checkpoint continued on 2 ranks: the same history to the contact loop's tolerance."""
+    """A 1-rank checkpoint continued on 2 ranks: the same history to the contact loop's tolerance
+    (the strict law's FOM closes gaps to 1e-9 of an edge, which the tip's lever arm lifts to about
+    1e-7 of the response; the ROM's sums are exact on any partition)."""
     _, tmp = restart_runs
     full, rest = histories(tmp / "full" / "paper-step.h5"), histories(tmp / "rest2" / "paper-step.h5")
-    for m in ("fom", "rom"):
-        assert rel(full[m][0], rest[m][0]) <= 1e-8, m
+    assert rel(full["fom"][0], rest["fom"][0]) <= 1e-6
+    assert rel(full["rom"][0], rest["rom"][0]) <= 1e-8
 
 
 def test_restart_refuses_another_run(restart_runs, tmp_path):

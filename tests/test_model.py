@@ -89,7 +89,9 @@ def test_ranks_give_same_operators_and_solution(joint_small, tmp_path):
     out = {}
     for ranks in (1, 2):
         d = tmp_path / f"np{ranks}"
-        run_summary(["-mesh", mesh, "-modal_nev", "0", "-verify_fields", "-output_dir", d], d, ranks=ranks)
+        # the stick law's loop converges its multipliers tightly, so the solution too is equal to
+        # 1e-10; the strict law's (to its gap tolerance) is checked in test_strict.py
+        run_summary(["-mesh", mesh, "-modal_nev", "0", "-verify_fields", "-contact_law", "stick", "-output_dir", d], d, ranks=ranks)
         out[ranks] = read_fields(d / "joint.h5", ["Kx", "Mx", "displacement"])
     assert np.array_equal(out[1][0], out[2][0])
     for name in ("Kx", "Mx", "displacement"):
