@@ -202,6 +202,11 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     PetscCall(op->ops.probe(op, nm->q, &nm->probeValue[n]));
     PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n]));
     if (nm->monitor) PetscCall(PetscPrintf(comm, "%s step %5" PetscInt_FMT " t %.6e outer %2" PetscInt_FMT " inner %3" PetscInt_FMT " active %" PetscInt_FMT "/%" PetscInt_FMT " energy %.10e probe %.6e\n", op->name, n, (double)t, nout, nin, op->state->nactive, op->contact->ngpGlobal, (double)nm->energy[n], (double)nm->probeValue[n]));
+    if (n % PetscMax(1, nm->nsteps / 10) == 0 && n < nm->nsteps) { /* progress of a long run, every tenth of it */
+      PetscLogDouble tp;
+      PetscCall(PetscTime(&tp));
+      if (tp - t0 > 10) PetscCall(PetscPrintf(comm, "%s: step %" PetscInt_FMT " of %" PetscInt_FMT ", t = %g s, %.0f s so far; %" PetscInt_FMT " solves, %" PetscInt_FMT " factorisations, %" PetscInt_FMT " of %" PetscInt_FMT " contact points closed\n", op->name, n, nm->nsteps, (double)t, tp - t0, nm->dual->solves, nm->dual->factorizations, op->state->nactive, op->contact->ngpGlobal));
+    }
     if (nm->checkpointEvery > 0 && n % nm->checkpointEvery == 0) {
       PetscLogDouble tc0, tc1;
       PetscCall(PetscTime(&tc0));
