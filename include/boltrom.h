@@ -187,6 +187,10 @@ typedef struct {
   Mat             Kc;             /* contact stiffness in the global layout (COO; made when first needed) */
   PetscBool       KcAssembled;    /* Kc holds the current element matrices */
   PetscInt        nactive;
+  /* raised on every rank together whenever the multipliers, the active or sliding flags or the
+     penalties may have changed (BoltContactStateChanged): a model that caches what it derives
+     from the state compares it, and every rank takes the same decision without a reduction */
+  PetscObjectState version;
 } BoltContactState;
 
 /* contact.c: the geometry */
@@ -212,7 +216,8 @@ PetscErrorCode BoltContactStateReset(BoltContactState *);
 PetscErrorCode BoltContactStateSetPenaltyScale(BoltContactState *, PetscReal, PetscReal);
 PetscErrorCode BoltContactStateGaps(BoltContactState *);
 PetscErrorCode BoltContactStateAugment(BoltContactState *, PetscReal *, PetscReal *);
-PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, PetscInt *, PetscBool *);
+PetscErrorCode BoltContactStateOpenTraction(BoltContactState *, PetscReal[]);
+PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, const PetscReal[], PetscInt *, PetscBool *);
 PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
@@ -228,6 +233,11 @@ PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, 
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
 PetscErrorCode BoltContactStateDestroy(BoltContactState **);
+/* To be called (on every rank) after the multipliers or flags were changed from outside. */
+static inline void BoltContactStateChanged(BoltContactState *s)
+{
+  s->version++;
+}
 /* The tangential penalty at point gp of a pair: none where the point slides (released). */
 static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)
 {
@@ -266,6 +276,9 @@ typedef struct {
   PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);             /* q -> contact->uc */
   PetscErrorCode (*contactForces)(BoltOperator *, const PetscReal[], Vec); /* Gauss-point tractions -> F (overwritten) */
   PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);               /* K_c of the active set */
+  /* optional, else from contactDisplacements and the state's own computation: */
+  PetscErrorCode (*contactGaps)(BoltOperator *, Vec, PetscReal[]);         /* q -> the gaps at the local contact points */
+  PetscErrorCode (*openTraction)(BoltOperator *, PetscReal[]);             /* the traction of the opening test (BoltContactStateOpenTraction) */
   PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
   /* checkpoints: the model's vectors (named datasets) and whatever else its state holds */
   PetscErrorCode (*vectorsSave)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]);
@@ -344,6 +357,7 @@ struct BoltDual_s {
   PetscInt        step;           /* where the loop is, for messages */
   PetscReal       time;
   Vec             Fc, work, qp, FcLambda;
+  PetscReal      *tnOpen;         /* per Gauss point: the traction of the opening test */
   PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
   /* counters and phase times (the paper's Table 2) */
   PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;

@@ -62,6 +62,7 @@ PetscErrorCode BoltContactStateSetPenaltyScale(BoltContactState *s, PetscReal sc
     s->bandTraction[p] = c->bandTraction[p] * band;
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
@@ -74,6 +75,7 @@ PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *s)
   PetscCall(MatDestroy(&s->Kc));
   s->KcAssembled = PETSC_FALSE;
   for (PetscInt e = 0; e < s->set->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
@@ -113,7 +115,8 @@ void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->released[4 * e + i];
 }
 
-/* The inverse of BoltContactStatePack; the element is due for a stiffness update. */
+/* The inverse of BoltContactStatePack; the element is due for a stiffness update. Not collective:
+   the caller calls BoltContactStateChanged once all elements are unpacked. */
 void BoltContactStateUnpack(BoltContactState *s, PetscInt e, const PetscReal buf[])
 {
   for (PetscInt i = 0; i < 12; i++) s->lambda[12 * e + i] = buf[i];
@@ -140,6 +143,7 @@ PetscErrorCode BoltContactStateReset(BoltContactState *s)
   PetscCall(PetscArrayzero(s->lambda, 12 * c->nelem));
   PetscCall(PetscArrayzero(s->gap, 12 * c->nelem));
   s->nactive = c->ngpGlobal;
+  BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
@@ -159,7 +163,7 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *s)
 PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange, PetscReal *maxPenetration)
 {
   BoltContactSet *c = s->set;
-  PetscReal       loc[3] = {0, 0, 0}, glob[3];
+  PetscReal       loc[4] = {0, 0, 0, 0}, glob[4];
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
@@ -172,6 +176,7 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
       for (PetscInt k = 0; k < 3; k++) {
         loc[0] += PetscSqr(t[k] - lam[k]);
         loc[1] += PetscSqr(t[k]);
+        if (t[k] != lam[k]) loc[3]++; /* (a change below the square's underflow counts too) */
         lam[k] = t[k];
       }
       if (s->active[gp]) {
@@ -180,24 +185,25 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
       }
     }
   }
-  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPI_SUM, c->mesh->comm));
-  PetscCall(MPIU_Allreduce(&loc[2], &glob[2], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  {
+    PetscReal sums[3] = {loc[0], loc[1], loc[3]}; /* the count of changed values goes with the sums */
+    PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  }
+  PetscCall(MPIU_Allreduce(&loc[2], &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
-  *maxPenetration = glob[2];
+  *maxPenetration = glob[3];
+  if (glob[2] > 0) BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
-/* New active set from the trial tractions; counts the points that changed (global) and tells
-   whether the set equals the one two outer iterations back (cycling between two sets). */
-PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchanged, PetscBool *cycling)
+/* The normal traction that decides whether a closed point opens, at every local point (used at
+   the active ones): the multipliers (converged) with augmentation, the trial traction for the
+   penalty alone; smoothed through the nodes (BOLT_OPEN_NODAL) or the point's own. Collective. */
+PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpen[])
 {
   BoltContactSet *c = s->set;
-  PetscInt        loc[3] = {0, 0, 0}, glob[3];
-  PetscReal      *tnOpen = NULL; /* the normal traction that decides whether a closed point opens */
 
   PetscFunctionBeginUser;
-  /* the traction of a closed point: the multipliers (converged) with augmentation, the trial
-     traction for the penalty alone; an open point has none */
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
@@ -208,13 +214,24 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
       else s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
     }
   }
-  PetscCall(PetscMalloc1(4 * c->nelem + 1, &tnOpen));
   if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tnOpen));
   else
     for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
       const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
       tnOpen[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
     }
+  PetscFunctionReturn(0);
+}
+
+/* New active set from the opening test's tractions (BoltContactStateOpenTraction, or a model's
+   own) and the gaps; counts the points that changed (global) and tells whether the set equals
+   the one two outer iterations back (cycling between two sets). */
+PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal tnOpen[], PetscInt *nchanged, PetscBool *cycling)
+{
+  BoltContactSet *c = s->set;
+  PetscInt        loc[3] = {0, 0, 0}, glob[3];
+
+  PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
@@ -249,10 +266,10 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
       if (now != s->activeOlder[gp]) loc[2]++;
     }
   }
-  PetscCall(PetscFree(tnOpen));
   PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
   *nchanged  = glob[0];
   s->nactive = glob[1];
+  if (glob[0]) BoltContactStateChanged(s);
   /* once points only close (anti-cycling) the set grows and cannot cycle: a return to the set of
      two iterations back is then the points opened just before closing again */
   *cycling   = (!s->closeOnly && glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
@@ -274,6 +291,7 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool ac
     if (active[gp]) nact++;
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  BoltContactStateChanged(s);
   PetscCall(MPIU_Allreduce(&nact, &s->nactive, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
   PetscFunctionReturn(0);
 }
@@ -300,6 +318,7 @@ PetscErrorCode BoltContactStateCloseCycle(BoltContactState *s, PetscInt *nclosed
   PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, c->mesh->comm));
   *nclosed   = glob[0];
   s->nactive = glob[1];
+  if (glob[0]) BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 

@@ -85,11 +85,27 @@ static PetscErrorCode BoltDualGapsOf(BoltDual *d, Vec q, PetscReal gap[])
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(PetscLogEventBegin(boltLog.contactForces, 0, 0, 0, 0));
-  PetscCall(op->ops.contactDisplacements(op, q));
-  PetscCall(BoltContactSetGapsOf(op->contact, gap));
+  if (op->ops.contactGaps) PetscCall(op->ops.contactGaps(op, q, gap));
+  else {
+    PetscCall(op->ops.contactDisplacements(op, q));
+    PetscCall(BoltContactSetGapsOf(op->contact, gap));
+  }
   PetscCall(PetscLogEventEnd(boltLog.contactForces, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   d->tContactForces += t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+/* The active set judged on the last solve: the opening test's tractions (the model's own way, if
+   it has one), then the state's decisions. */
+static PetscErrorCode BoltDualUpdateActive(BoltDual *d, PetscInt *nchanged, PetscBool *cycling)
+{
+  BoltOperator *op = d->op;
+
+  PetscFunctionBeginUser;
+  if (op->ops.openTraction) PetscCall(op->ops.openTraction(op, d->tnOpen));
+  else PetscCall(BoltContactStateOpenTraction(op->state, d->tnOpen));
+  PetscCall(BoltContactStateUpdateActive(op->state, d->tnOpen, nchanged, cycling));
   PetscFunctionReturn(0);
 }
 
@@ -152,6 +168,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
   }
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
     if (!s->active[gp]) s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
+  BoltContactStateChanged(s);
   PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, q));
   PetscCall(VecCopy(d->Fc, d->FcLambda)); /* the contact forces of lambda, kept up to date */
   PetscCall(BoltDualGapsOf(d, q, r));
@@ -179,6 +196,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
       s->lambda[k] += alpha * p[k];
       r[k] -= alpha * Ap[k];
     }
+    BoltContactStateChanged(s);
     PetscCall(VecAXPY(q, -alpha, d->qp));
     /* change of the multipliers, measured by the nodal forces they exert: components of lambda
        that exert no force (there are more Gauss points than nodes) change nothing */
@@ -313,7 +331,7 @@ PetscErrorCode BoltDualSetUp(BoltDual *d)
   PetscCall(VecDuplicate(d->Fc, &d->work));
   PetscCall(VecDuplicate(d->Fc, &d->qp));
   PetscCall(VecDuplicate(d->Fc, &d->FcLambda));
-  PetscCall(PetscMalloc3(ng, &d->cgR, ng, &d->cgP, ng, &d->cgAp));
+  PetscCall(PetscMalloc4(ng, &d->cgR, ng, &d->cgP, ng, &d->cgAp, 4 * op->contact->nelem + 1, &d->tnOpen));
   /* K_eff gets the union of the structural and the contact pattern once, so that it keeps one
      pattern and MUMPS repeats only the numeric factorisation */
   PetscCall(op->ops.contactStiffness(op, &Kc));
@@ -367,6 +385,7 @@ static PetscErrorCode BoltDualCalibrate(BoltDual *d, Vec rhs0, Vec q)
     s->lambda[k] *= scale;
     s->gap[k] *= scale;
   }
+  BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
@@ -432,7 +451,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     d->lastPenetration = viol;
     if (d->calibrating) PetscCall(BoltDualCalibrate(d, rhs0, q));
     if (d->keepActiveSet && !d->dynamic) nchanged = 0, cycling = PETSC_FALSE;
-    else PetscCall(BoltContactStateUpdateActive(s, &nchanged, &cycling));
+    else PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, sets, solves, nchanged, cycling));
     if (!nchanged && viol <= d->tolPenetration) break;
     if (nchanged) {
@@ -480,13 +499,16 @@ PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, P
 
     if (refactor) PetscCall(BoltDualFactor(d));
     /* under the penalty law the multipliers are not unknowns (zero, or a ROM's frozen preload) */
-    if (!d->warmStart && s->augment) PetscCall(PetscArrayzero(s->lambda, 12 * op->contact->nelem));
+    if (!d->warmStart && s->augment) {
+      PetscCall(PetscArrayzero(s->lambda, 12 * op->contact->nelem));
+      BoltContactStateChanged(s);
+    }
     PetscCall((*d->inner)(d, rhs0, q, &inner));
     innerTotal += inner;
     if (d->calibrating) PetscCall(BoltDualCalibrate(d, rhs0, q));
     if (d->monitor > 0 && s->augment) PetscCall(BoltContactMonitorTension(d));
     if (d->keepActiveSet && !d->dynamic) break;
-    PetscCall(BoltContactStateUpdateActive(s, &nchanged, &cycling));
+    PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, outer, inner, nchanged, cycling));
     if (!nchanged) break;
     refactor = PETSC_TRUE;
@@ -565,7 +587,7 @@ PetscErrorCode BoltDualDestroy(BoltDual **dp)
   PetscCall(VecDestroy(&d->work));
   PetscCall(VecDestroy(&d->qp));
   PetscCall(VecDestroy(&d->FcLambda));
-  PetscCall(PetscFree3(d->cgR, d->cgP, d->cgAp));
+  PetscCall(PetscFree4(d->cgR, d->cgP, d->cgAp, d->tnOpen));
   PetscCall(MatDestroy(&d->Keff));
   PetscCall(KSPDestroy(&d->ksp));
   PetscCall(PetscFree(*dp));

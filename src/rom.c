@@ -314,6 +314,7 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
       s->law.traction(lam, g, &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), &s->lambda[3 * gp]);
     }
   }
+  BoltContactStateChanged(s);
   nm->calibratePreload = PETSC_FALSE;
   /* the static state is the FOM's by construction: its active set is not judged again there
      (under the ROM's stiffer penalty, points at the rim whose traction is within the band of
