@@ -163,9 +163,11 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *s)
 PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange, PetscReal *maxPenetration)
 {
   BoltContactSet *c = s->set;
-  PetscReal       loc[4] = {0, 0, 0, 0}, glob[4];
+  PetscReal       change = 0, size = 0, nchanged = 0, pen = 0, pen2 = 0, sums[3], glob[4];
 
   PetscFunctionBeginUser;
+  /* (sums in scalars, not in the array handed to MPI: kept in memory they stalled the loop; the
+     sticking points' largest |g| as the root of the largest g.g, the same number) */
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
@@ -174,22 +176,24 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
       const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
       if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
       for (PetscInt k = 0; k < 3; k++) {
-        loc[0] += PetscSqr(t[k] - lam[k]);
-        loc[1] += PetscSqr(t[k]);
-        if (t[k] != lam[k]) loc[3]++; /* (a change below the square's underflow counts too) */
+        change += PetscSqr(t[k] - lam[k]);
+        size += PetscSqr(t[k]);
+        if (t[k] != lam[k]) nchanged++; /* (a change below the square's underflow counts too) */
         lam[k] = t[k];
       }
       if (s->active[gp]) {
         const PetscReal gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
-        loc[2] = PetscMax(loc[2], !s->law.strict ? -gn : s->released[gp] ? PetscAbsReal(gn) : PetscSqrtReal(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+        if (s->law.strict && !s->released[gp]) pen2 = PetscMax(pen2, g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        else pen = PetscMax(pen, !s->law.strict ? -gn : PetscAbsReal(gn));
       }
     }
   }
-  {
-    PetscReal sums[3] = {loc[0], loc[1], loc[3]}; /* the count of changed values goes with the sums */
-    PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
-  }
-  PetscCall(MPIU_Allreduce(&loc[2], &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  pen = PetscMax(pen, PetscSqrtReal(pen2));
+  sums[0] = change;
+  sums[1] = size;
+  sums[2] = nchanged; /* the count goes with the sums */
+  PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
   *maxPenetration = glob[3];
   if (glob[2] > 0) BoltContactStateChanged(s);
