@@ -455,6 +455,20 @@ typedef struct {
   PetscReal      *dMe;               /* 144 per local contact element: scratch of the K_cr update */
   PetscInt       *dirtyElems;        /* per local contact element: scratch of the K_cr update */
   BoltExactSum    sum;               /* the reductions over ranks, partition-independent */
+  /* what the online phase keeps while the contact state's version holds (BoltContactState) */
+  PetscScalar    *Fr;                /* n: the reduced forces of the state's multipliers */
+  PetscObjectState FrVersion, KcrVersion, tnVersion;
+  PetscBool       FrValid, KcrValid, tnValid;
+  /* the normal gaps, n' (V_b - V_a) q at each node pair and distinct point normal: a third of the
+     rows of V_c, and all that the penalty law's decisions need where the contact surfaces are
+     flat (the tangential gaps act only through the penalty, which is inside K_cr) */
+  PetscBool       flat;              /* the normals of all points at each node agree (global) */
+  PetscBool       normalGaps;        /* one normal row per node pair (flat, nodal quadrature), else three rows of D */
+  PetscInt        nGapRows;
+  PetscScalar    *Rn;                /* nGapRows x n, column-major */
+  PetscInt       *gpRows;            /* 4 per local point: the row of each node it interpolates (-1: none) */
+  PetscScalar    *gnRow;             /* nGapRows: scratch */
+  PetscReal      *tnC, *tnK;         /* per local point: the opening test's traction is tnC + tnK g.n */
   BoltContactSet *contact;
   /* offline figures */
   PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];
