@@ -3,6 +3,8 @@
    the reduced model each own one over the shared geometry (BoltContactSet), so neither changes
    the other's penalties or multipliers. */
 #include "boltrom.h"
+#include <stdint.h>
+#include <string.h>
 
 /* A state with the geometry's default law and penalties, every point active, no multipliers. */
 PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
@@ -164,8 +166,20 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
 {
   BoltContactSet *c = s->set;
   PetscReal       change = 0, size = 0, nchanged = 0, pen = 0, pen2 = 0, sums[3], glob[4];
+  PetscBool       update = s->augment;
 
   PetscFunctionBeginUser;
+  /* the penalty law sets the multipliers to zero (no trial traction): nothing to update once
+     they are (all bits of +0 are zero) */
+  if (!update) {
+    uint64_t bits = 0;
+    for (PetscInt k = 0; k < 12 * c->nelem; k++) {
+      uint64_t b;
+      memcpy(&b, &s->lambda[k], sizeof(b));
+      bits |= b;
+    }
+    update = (PetscBool)(bits != 0);
+  }
   /* (sums in scalars, not in the array handed to MPI: kept in memory they stalled the loop; the
      sticking points' largest |g| as the root of the largest g.g, the same number) */
   for (PetscInt e = 0; e < c->nelem; e++) {
@@ -174,12 +188,14 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
       PetscInt         gp = 4 * e + q;
       PetscReal       *lam = &s->lambda[3 * gp], t[3] = {0, 0, 0};
       const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
-      if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
-      for (PetscInt k = 0; k < 3; k++) {
-        change += PetscSqr(t[k] - lam[k]);
-        size += PetscSqr(t[k]);
-        if (t[k] != lam[k]) nchanged++; /* (a change below the square's underflow counts too) */
-        lam[k] = t[k];
+      if (update) {
+        if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+        for (PetscInt k = 0; k < 3; k++) {
+          change += PetscSqr(t[k] - lam[k]);
+          size += PetscSqr(t[k]);
+          if (t[k] != lam[k]) nchanged++; /* (a change below the square's underflow counts too) */
+          lam[k] = t[k];
+        }
       }
       if (s->active[gp]) {
         const PetscReal gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
