@@ -459,11 +459,10 @@ typedef struct {
   PetscScalar    *Fr;                /* n: the reduced forces of the state's multipliers */
   PetscObjectState FrVersion, KcrVersion, tnVersion;
   PetscBool       FrValid, KcrValid, tnValid;
-  /* the normal gaps, n' (V_b - V_a) q at each node pair and distinct point normal: a third of the
-     rows of V_c, and all that the penalty law's decisions need where the contact surfaces are
-     flat (the tangential gaps act only through the penalty, which is inside K_cr) */
-  PetscBool       flat;              /* the normals of all points at each node agree (global) */
-  PetscBool       normalGaps;        /* one normal row per node pair (flat, nodal quadrature), else three rows of D */
+  /* the gaps from node-pair differences D = V_b - V_a: on flat surfaces the normal gaps n' D q
+     (a sixth of the rows of V_c), all that the penalty law's decisions need (the tangential gaps
+     act only through the penalty, which is inside K_cr) */
+  PetscBool       flat;              /* the normals of all points at each node agree (global): one normal row per node pair, else three rows of D */
   PetscInt        nGapRows;
   PetscScalar    *Rn;                /* nGapRows x n, column-major */
   PetscInt       *gpRows;            /* 4 per local point: the row of each node it interpolates (-1: none) */

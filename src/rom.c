@@ -253,8 +253,8 @@ static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
 /* The gaps at the local contact points from rows of node-pair differences D = V_b - V_a (a
    third or half of the rows of V_c, and free of the cancellation in u_b - u_a), under the
    penalty law: there the multipliers do not take the trial traction, so the gaps only feed the
-   decisions and the penalty acts through K_cr. On flat surfaces with nodal quadrature only the
-   normal part, g = (n' D q) n: the decisions read t.n, where the tangential part cancels to
+   decisions and the penalty acts through K_cr. On flat surfaces only the normal part,
+   g = (sum_a N_a n' D_a q) n: the decisions read t.n, where the tangential part cancels to
    round-off. With augmentation (the multipliers take the trial traction): u_c and the set's
    interpolation, as the full model. */
 static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
@@ -276,8 +276,12 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
     const PetscInt  *r = &rom->gpRows[4 * gp];
     const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp]; /* gpN: 4 per point */
     PetscReal       *g = &gap[3 * gp];
-    if (rom->normalGaps) { /* nodal quadrature: the point's own node, with weight 1 */
-      const PetscReal gn = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4]]) : 0;
+    if (rom->flat) {
+      PetscReal gn = 0;
+      if (c->quadrature == BOLT_QUADRATURE_NODAL) gn = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4]]) : 0; /* its own node, weight 1 */
+      else
+        for (PetscInt a = 0; a < 4; a++)
+          if (r[a] >= 0) gn += N[a] * PetscRealPart(rom->gnRow[r[a]]);
       for (PetscInt k = 0; k < 3; k++) g[k] = gn * n[k];
     } else
       for (PetscInt k = 0; k < 3; k++) {
@@ -303,7 +307,7 @@ static PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
   const PetscInt    ngp = 4 * c->nelem;
 
   PetscFunctionBeginUser;
-  if (s->augment || (s->openTest == BOLT_OPEN_NODAL && !rom->normalGaps)) {
+  if (s->augment || (s->openTest == BOLT_OPEN_NODAL && !(c->quadrature == BOLT_QUADRATURE_NODAL && rom->flat))) {
     PetscCall(BoltContactStateOpenTraction(s, tn));
     PetscFunctionReturn(0);
   }
@@ -337,9 +341,15 @@ static PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
 
 /* The gap rows, from the elements' D_e so that a row has the same bits on any partition. Whether
    the surfaces are flat: at every node the normals of all points around it, over all ranks (the
-   nodal area vector sums them), agree with each point's to 1e-12. With nodal quadrature on flat
-   surfaces one row n' D per node pair and distinct point normal (one per node pair when the
-   normals agree to the bit); else the three rows of D per node pair. */
+   nodal area vector sums them), agree with each point's to 1e-12. On flat surfaces one row n' D
+   per node pair and point normal rounded to 2^-40 (the normals of a flat face's points differ in
+   their last bits; rounded, they are one normal, whichever point of whichever rank makes the
+   row); else the three rows of D per node pair. */
+static void ROMRowNormal(const PetscReal n[3], PetscReal nr[3])
+{
+  for (PetscInt k = 0; k < 3; k++) nr[k] = ldexp(rint(ldexp(n[k], 40)), -40);
+}
+
 static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
 {
   BoltContactSet *c = rom->contact;
@@ -364,22 +374,24 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
     }
   }
   PetscCall(MPIU_Allreduce(&flat, &rom->flat, 1, MPIU_BOOL, MPI_LAND, rom->comm));
-  rom->normalGaps = (PetscBool)(rom->flat && c->quadrature == BOLT_QUADRATURE_NODAL);
-  width           = rom->normalGaps ? 1 : 3;
+  width = rom->flat ? 1 : 3;
   for (PetscInt i = 0; i < c->nlocal; i++) first[i] = -1;
   rom->nGapRows = 0;
   for (PetscInt gp = 0; gp < ngp; gp++) {
     const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
-    const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp];
+    const PetscReal *N = &c->gpN[4 * gp];
+    PetscReal        n[3];
+    ROMRowNormal(&c->gpNormal[3 * gp], n);
     for (PetscInt a = 0; a < 4; a++) {
       const PetscInt slot = loc[12 + 3 * a] >= 0 ? loc[12 + 3 * a] : loc[3 * a]; /* the pair's first DOF on side b, or a */
       PetscInt       r;
       rom->gpRows[4 * gp + a] = -1;
-      PetscCheck(!rom->normalGaps || N[a] == (a == gp % 4 ? 1.0 : 0.0), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Nodal quadrature: point %" PetscInt_FMT " is not at its own node", gp);
+      PetscCheck(c->quadrature != BOLT_QUADRATURE_NODAL || N[a] == (a == gp % 4 ? 1.0 : 0.0), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Nodal quadrature: point %" PetscInt_FMT " is not at its own node", gp);
       if (N[a] == 0 || slot < 0) continue; /* no weight, or both sides clamped: no gap */
       for (r = first[slot]; r >= 0; r = next[r]) {
-        const PetscReal *m = &c->gpNormal[3 * rowGp[r]];
-        if (!rom->normalGaps || (m[0] == n[0] && m[1] == n[1] && m[2] == n[2])) break;
+        PetscReal m[3];
+        ROMRowNormal(&c->gpNormal[3 * rowGp[r]], m);
+        if (!rom->flat || (m[0] == n[0] && m[1] == n[1] && m[2] == n[2])) break;
       }
       if (r < 0) {
         r = rom->nGapRows;
@@ -395,9 +407,11 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
   PetscCall(PetscMalloc2(rom->nGapRows * n + 1, &rom->Rn, rom->nGapRows + 1, &rom->gnRow));
   for (PetscInt i = 0; i < c->nlocal; i++)
     for (PetscInt r = first[i]; r >= 0; r = next[r]) {
-      const PetscReal *D = &rom->De[12 * n * (rowGp[r] / 4) + 3 * rowNode[r]], *nr = &c->gpNormal[3 * rowGp[r]];
+      const PetscReal *D = &rom->De[12 * n * (rowGp[r] / 4) + 3 * rowNode[r]];
+      PetscReal        nr[3];
+      ROMRowNormal(&c->gpNormal[3 * rowGp[r]], nr);
       for (PetscInt j = 0; j < n; j++) {
-        if (rom->normalGaps) rom->Rn[r + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
+        if (rom->flat) rom->Rn[r + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
         else
           for (PetscInt k = 0; k < 3; k++) rom->Rn[r + k + rom->nGapRows * j] = D[12 * j + k];
       }
