@@ -3,7 +3,9 @@
    rows of the basis: u_c = V_c q_r, F_r = sum_e D_e' f_e and K_cr = sum_e V_e' K_e V_e (as
    D_e' M_e D_e, updated only for elements whose active points changed), with D_e = V_b - V_a at
    the element's node pairs. Both sums are exact over ranks: the ROM's history has the same bits
-   on any partition. */
+   on any partition. Under the penalty law a time step needs neither u_c nor the sums while the
+   contact state holds: the gaps come from node-pair rows (normal ones on flat surfaces), and
+   the forces, K_cr and the opening test's coefficients are kept with the state's version. */
 #include "boltrom.h"
 #include <petscblaslapack.h>
 
@@ -251,7 +253,7 @@ static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
 }
 
 /* The gaps at the local contact points from rows of node-pair differences D = V_b - V_a (a
-   third or half of the rows of V_c, and free of the cancellation in u_b - u_a), under the
+   sixth or half of the rows of V_c, and free of the cancellation in u_b - u_a), under the
    penalty law: there the multipliers do not take the trial traction, so the gaps only feed the
    decisions and the penalty acts through K_cr. On flat surfaces only the normal part,
    g = (sum_a N_a n' D_a q) n: the decisions read t.n, where the tangential part cancels to
@@ -339,17 +341,17 @@ static PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
   PetscFunctionReturn(0);
 }
 
-/* The gap rows, from the elements' D_e so that a row has the same bits on any partition. Whether
-   the surfaces are flat: at every node the normals of all points around it, over all ranks (the
-   nodal area vector sums them), agree with each point's to 1e-12. On flat surfaces one row n' D
-   per node pair and point normal rounded to 2^-40 (the normals of a flat face's points differ in
-   their last bits; rounded, they are one normal, whichever point of whichever rank makes the
-   row); else the three rows of D per node pair. */
+/* A point's normal rounded to 2^-40: the normals of a flat face's points differ in their last
+   bits; rounded, they are one normal, whichever point of whichever rank makes a row. */
 static void ROMRowNormal(const PetscReal n[3], PetscReal nr[3])
 {
   for (PetscInt k = 0; k < 3; k++) nr[k] = ldexp(rint(ldexp(n[k], 40)), -40);
 }
 
+/* The gap rows, from the elements' D_e so that a row has the same bits on any partition. Whether
+   the surfaces are flat: at every node the normals of all points around it, over all ranks (the
+   nodal area vector sums them), agree with each point's to 1e-12. On flat surfaces one row n' D
+   per node pair and rounded point normal (one per node pair), else the three rows of D. */
 static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
 {
   BoltContactSet *c = rom->contact;
@@ -367,9 +369,12 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
     const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp];
     for (PetscInt a = 0; a < 4; a++) {
       const PetscInt *ii = loc[12 + 3 * a] >= 0 ? &loc[12 + 3 * a] : &loc[3 * a]; /* the pair's DOFs on side b, or a */
+      PetscReal       A[3], x[3];
       if (N[a] == 0 || ii[0] < 0) continue;
-      const PetscReal A[3] = {c->nodalArea[ii[0]], c->nodalArea[ii[1]], c->nodalArea[ii[2]]};
-      const PetscReal x[3] = {A[1] * n[2] - A[2] * n[1], A[2] * n[0] - A[0] * n[2], A[0] * n[1] - A[1] * n[0]};
+      for (PetscInt k = 0; k < 3; k++) A[k] = c->nodalArea[ii[k]];
+      x[0] = A[1] * n[2] - A[2] * n[1]; /* A x n */
+      x[1] = A[2] * n[0] - A[0] * n[2];
+      x[2] = A[0] * n[1] - A[1] * n[0];
       if (PetscSqrtReal(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > 1e-12 * PetscSqrtReal(A[0] * A[0] + A[1] * A[1] + A[2] * A[2])) flat = PETSC_FALSE;
     }
   }
@@ -417,7 +422,6 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
       }
     }
   PetscCall(PetscFree4(first, next, rowGp, rowNode));
-  rom->tnValid = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -449,7 +453,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
-  rom->KcrValid = rom->FrValid = PETSC_FALSE; /* a new state: its versions start afresh */
+  rom->KcrValid = rom->FrValid = rom->tnValid = PETSC_FALSE; /* a new state: its versions start afresh */
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscCalloc1(144 * rom->contact->nelem + 1, &rom->Ke));
   PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
