@@ -18,6 +18,7 @@ typedef struct {
   PetscLogEvent meshRead, meshDistribute, assembly, contactSetUp, contactAssembly, loads;
   PetscLogEvent factorization, staticSolve, modalSolve, output;
   PetscLogEvent contactStiffness, displacements, contactForces; /* the paper's Table 2 phases */
+  PetscLogEvent contactUpdate;                                  /* the state's augmentation and decisions */
   PetscLogEvent basis, projection, krylovFactor, krylovSolve, krylovOrth, interfaceReduction;
   PetscLogStage stageSetUp, stageStatic, stageModal, stageOutput, stagePreload, stageTransient;
 } BoltLog;
@@ -191,6 +192,7 @@ typedef struct {
      penalties may have changed (BoltContactStateChanged): a model that caches what it derives
      from the state compares it, and every rank takes the same decision without a reduction */
   PetscObjectState version;
+  PetscBool        lambdaZero; /* the multipliers are +0 on every rank (penalty law, after an augmentation) */
 } BoltContactState;
 
 /* contact.c: the geometry */
@@ -237,6 +239,7 @@ PetscErrorCode BoltContactStateDestroy(BoltContactState **);
 static inline void BoltContactStateChanged(BoltContactState *s)
 {
   s->version++;
+  s->lambdaZero = PETSC_FALSE;
 }
 /* The tangential penalty at point gp of a pair: none where the point slides (released). */
 static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)

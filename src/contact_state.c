@@ -171,7 +171,7 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   PetscFunctionBeginUser;
   /* the penalty law sets the multipliers to zero (no trial traction): nothing to update once
      they are (all bits of +0 are zero) */
-  if (!update) {
+  if (!update && !s->lambdaZero) {
     uint64_t bits = 0;
     for (PetscInt k = 0; k < 12 * c->nelem; k++) {
       uint64_t b;
@@ -208,11 +208,14 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   sums[0] = change;
   sums[1] = size;
   sums[2] = nchanged; /* the count goes with the sums */
-  PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  /* multipliers known to be +0 everywhere stay so under the penalty law: the sums are zero */
+  if (!s->augment && s->lambdaZero) glob[0] = glob[1] = glob[2] = 0;
+  else PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
   PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
   *maxPenetration = glob[3];
   if (glob[2] > 0) BoltContactStateChanged(s);
+  if (!s->augment) s->lambdaZero = PETSC_TRUE; /* the penalty law has set them to +0 on every rank */
   PetscFunctionReturn(0);
 }
 

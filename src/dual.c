@@ -103,9 +103,11 @@ static PetscErrorCode BoltDualUpdateActive(BoltDual *d, PetscInt *nchanged, Pets
   BoltOperator *op = d->op;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
   if (op->ops.openTraction) PetscCall(op->ops.openTraction(op, d->tnOpen));
   else PetscCall(BoltContactStateOpenTraction(op->state, d->tnOpen));
   PetscCall(BoltContactStateUpdateActive(op->state, d->tnOpen, nchanged, cycling));
+  PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -132,7 +134,9 @@ static PetscErrorCode BoltDualInnerUzawa(BoltDual *d, Vec rhs0, Vec q, PetscInt 
   for (inner = 1;; inner++) {
     PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, q));
     PetscCall(BoltDualGapsOf(d, q, s->gap));
+    PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
     PetscCall(BoltContactStateAugment(s, &rel, &pen));
+    PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
     d->lastChange      = rel;
     d->lastPenetration = pen;
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(pen), d->op->comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", d->op->name, d->step, (double)d->time);
@@ -445,7 +449,9 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, q));
     PetscCall(BoltDualGapsOf(d, q, s->gap));
     solves++;
+    PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
     PetscCall(BoltContactStateAugment(s, &rel, &viol));
+    PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(viol), comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", op->name, d->step, (double)d->time);
     d->lastChange      = rel;
     d->lastPenetration = viol;
