@@ -18,6 +18,7 @@ typedef struct {
   PetscLogEvent meshRead, meshDistribute, assembly, contactSetUp, contactAssembly, loads;
   PetscLogEvent factorization, staticSolve, modalSolve, output;
   PetscLogEvent contactStiffness, displacements, contactForces; /* the paper's Table 2 phases */
+  PetscLogEvent contactUpdate;                                  /* the state's augmentation and decisions */
   PetscLogEvent basis, projection, krylovFactor, krylovSolve, krylovOrth, interfaceReduction;
   PetscLogStage stageSetUp, stageStatic, stageModal, stageOutput, stagePreload, stageTransient;
 } BoltLog;
@@ -192,6 +193,11 @@ typedef struct {
   Mat             Kc;             /* contact stiffness in the global layout (COO; made when first needed) */
   PetscBool       KcAssembled;    /* Kc holds the current element matrices */
   PetscInt        nactive;
+  /* raised on every rank together whenever the multipliers, the active or sliding flags or the
+     penalties may have changed (BoltContactStateChanged): a model that caches what it derives
+     from the state compares it, and every rank takes the same decision without a reduction */
+  PetscObjectState version;
+  PetscBool        lambdaZero; /* the multipliers are +0 on every rank (penalty law, after an augmentation) */
 } BoltContactState;
 
 /* contact.c: the geometry */
@@ -220,7 +226,8 @@ const PetscReal *BoltContactStateForceMultipliers(BoltContactState *);
 PetscErrorCode BoltContactStateSetPenaltyScale(BoltContactState *, PetscReal, PetscReal);
 PetscErrorCode BoltContactStateGaps(BoltContactState *);
 PetscErrorCode BoltContactStateAugment(BoltContactState *, PetscReal *, PetscReal *);
-PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, PetscInt *, PetscBool *);
+PetscErrorCode BoltContactStateOpenTraction(BoltContactState *, PetscReal[]);
+PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, const PetscReal[], PetscInt *, PetscBool *);
 PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
@@ -237,6 +244,12 @@ PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, 
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
 PetscErrorCode BoltContactStateDestroy(BoltContactState **);
+/* To be called (on every rank) after the multipliers or flags were changed from outside. */
+static inline void BoltContactStateChanged(BoltContactState *s)
+{
+  s->version++;
+  s->lambdaZero = PETSC_FALSE;
+}
 /* The tangential penalty at point gp of a pair: none where the point slides (released). */
 static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)
 {
@@ -275,6 +288,9 @@ typedef struct {
   PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);             /* q -> contact->uc */
   PetscErrorCode (*contactForces)(BoltOperator *, const PetscReal[], Vec); /* Gauss-point tractions -> F (overwritten) */
   PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);               /* K_c of the active set */
+  /* optional, else from contactDisplacements and the state's own computation: */
+  PetscErrorCode (*contactGaps)(BoltOperator *, Vec, PetscReal[]);         /* q -> the gaps at the local contact points */
+  PetscErrorCode (*openTraction)(BoltOperator *, PetscReal[]);             /* the traction of the opening test (BoltContactStateOpenTraction) */
   PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
   /* checkpoints: the model's vectors (named datasets) and whatever else its state holds */
   PetscErrorCode (*vectorsSave)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]);
@@ -354,6 +370,7 @@ struct BoltDual_s {
   PetscInt        step;           /* where the loop is, for messages */
   PetscReal       time;
   Vec             Fc, work, qp, FcLambda;
+  PetscReal      *tnOpen;         /* per Gauss point: the traction of the opening test */
   PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
   /* counters and phase times (the paper's Table 2) */
   PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
@@ -451,6 +468,20 @@ typedef struct {
   PetscReal      *dMe;               /* 144 per local contact element: scratch of the K_cr update */
   PetscInt       *dirtyElems;        /* per local contact element: scratch of the K_cr update */
   BoltExactSum    sum;               /* the reductions over ranks, partition-independent */
+  /* what the online phase keeps while the contact state's version holds (BoltContactState) */
+  PetscScalar    *Fr;                /* n: the reduced forces of the state's multipliers */
+  PetscObjectState FrVersion, KcrVersion, tnVersion;
+  PetscBool       FrValid, KcrValid, tnValid;
+  /* the gaps from node-pair differences D = V_b - V_a: on flat surfaces the normal gaps n' D q
+     (a sixth of the rows of V_c), all that the penalty law's decisions need (the tangential gaps
+     act only through the penalty, which is inside K_cr) */
+  PetscBool       flat;              /* the normals of all points at each node agree (global) */
+  PetscBool       normalRows;        /* flat, and no tangential gap needed: one normal row per node pair, else three rows of D */
+  PetscInt        nGapRows;
+  PetscScalar    *Rn;                /* nGapRows x n, column-major */
+  PetscInt       *gpRows;            /* 4 per local point: the row of each node it interpolates (-1: none) */
+  PetscScalar    *gnRow;             /* nGapRows: scratch */
+  PetscReal      *tnC, *tnK;         /* per local point: the opening test's traction is tnC + tnK g.n */
   BoltContactSet *contact;
   /* offline figures */
   PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];

@@ -211,6 +211,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
     }
     PetscCall(PetscFree(x));
     PetscCall(BoltKeyIndexDestroy(&ix));
+    BoltContactStateChanged(op->state); /* before stateLoad: the ROM brings K_cr up to date there */
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &missing, 1, MPIU_INT, MPI_SUM, comm));
   PetscCheck(!missing, comm, PETSC_ERR_USER_INPUT, "-restart: %" PetscInt_FMT " DOFs or contact elements of this model are not in the checkpoint %s: it was written for another mesh or clamp", missing, file);

@@ -3,6 +3,8 @@
    the reduced model each own one over the shared geometry (BoltContactSet), so neither changes
    the other's penalties or multipliers. */
 #include "boltrom.h"
+#include <stdint.h>
+#include <string.h>
 
 /* A state with the geometry's default law and penalties, every point active, no multipliers. */
 PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
@@ -65,6 +67,7 @@ PetscErrorCode BoltContactStateSetPenaltyScale(BoltContactState *s, PetscReal sc
     s->bandTraction[p] = c->bandTraction[p] * band;
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
@@ -77,6 +80,7 @@ PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *s)
   PetscCall(MatDestroy(&s->Kc));
   s->KcAssembled = PETSC_FALSE;
   for (PetscInt e = 0; e < s->set->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
@@ -124,7 +128,8 @@ void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
   for (PetscInt i = 0; i < 12; i++) buf[k++] = s->anchor[12 * e + i];
 }
 
-/* The inverse of BoltContactStatePack; the element is due for a stiffness update. */
+/* The inverse of BoltContactStatePack; the element is due for a stiffness update. Not collective:
+   the caller calls BoltContactStateChanged once all elements are unpacked. */
 void BoltContactStateUnpack(BoltContactState *s, PetscInt e, const PetscReal buf[])
 {
   for (PetscInt i = 0; i < 12; i++) s->lambda[12 * e + i] = buf[i];
@@ -157,6 +162,7 @@ PetscErrorCode BoltContactStateReset(BoltContactState *s)
   PetscCall(PetscArrayzero(s->anchor, 12 * c->nelem));
   s->anchored = PETSC_FALSE;
   s->nactive = c->ngpGlobal;
+  BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
@@ -177,31 +183,57 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *s)
 PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange, PetscReal *maxPenetration)
 {
   BoltContactSet *c = s->set;
-  PetscReal       loc[3] = {0, 0, 0}, glob[3];
+  PetscReal       change = 0, size = 0, nchanged = 0, pen = 0, pen2 = 0, sums[3], glob[4];
+  PetscBool       update = s->augment;
 
   PetscFunctionBeginUser;
+  /* the penalty law sets the multipliers to zero (no trial traction): nothing to update once
+     they are (all bits of +0 are zero) */
+  if (!update && !s->lambdaZero) {
+    uint64_t bits = 0;
+    for (PetscInt k = 0; k < 12 * c->nelem; k++) {
+      uint64_t b;
+      memcpy(&b, &s->lambda[k], sizeof(b));
+      bits |= b;
+    }
+    update = (PetscBool)(bits != 0);
+  }
+  /* (sums in scalars, not in the array handed to MPI: kept in memory they stalled the loop; the
+     sticking points' largest |g| as the root of the largest g.g, the same number) */
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt         gp = 4 * e + q;
       PetscReal       *lam = &s->lambda[3 * gp], t[3] = {0, 0, 0};
       const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
-      if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
-      for (PetscInt k = 0; k < 3; k++) {
-        loc[0] += PetscSqr(t[k] - lam[k]);
-        loc[1] += PetscSqr(t[k]);
-        lam[k] = t[k];
+      if (update) {
+        if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+        for (PetscInt k = 0; k < 3; k++) {
+          change += PetscSqr(t[k] - lam[k]);
+          size += PetscSqr(t[k]);
+          if (t[k] != lam[k]) nchanged++; /* (a change below the square's underflow counts too) */
+          lam[k] = t[k];
+        }
       }
       if (s->active[gp]) {
         const PetscReal gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
-        loc[2] = PetscMax(loc[2], !s->law.strict ? -gn : s->released[gp] ? PetscAbsReal(gn) : PetscSqrtReal(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+        if (s->law.strict && !s->released[gp]) pen2 = PetscMax(pen2, g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        else pen = PetscMax(pen, !s->law.strict ? -gn : PetscAbsReal(gn));
       }
     }
   }
-  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPI_SUM, c->mesh->comm));
-  PetscCall(MPIU_Allreduce(&loc[2], &glob[2], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  pen = PetscMax(pen, PetscSqrtReal(pen2));
+  sums[0] = change;
+  sums[1] = size;
+  sums[2] = nchanged; /* the count goes with the sums */
+  /* multipliers known to be +0 everywhere stay so under the penalty law: the sums are zero */
+  if (!s->augment && s->lambdaZero) glob[0] = glob[1] = glob[2] = 0;
+  else PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
-  *maxPenetration = glob[2];
+  *maxPenetration = glob[3];
+  if (glob[2] > 0) BoltContactStateChanged(s);
+  if (!s->augment) s->lambdaZero = PETSC_TRUE; /* the penalty law has set them to +0 on every rank */
   PetscFunctionReturn(0);
 }
 
@@ -229,6 +261,7 @@ void BoltContactStateSetAnchors(BoltContactState *s, const PetscReal anchor[])
     s->anchor[k] = anchor ? anchor[k] : 0;
     if (s->anchor[k] != 0) s->anchored = PETSC_TRUE;
   }
+  BoltContactStateChanged(s); /* the forces of the multipliers move with the anchors */
 }
 
 /* Gaps relative to the anchors (after the raw gaps u_b - u_a were computed into gap). */
@@ -256,17 +289,14 @@ const PetscReal *BoltContactStateForceMultipliers(BoltContactState *s)
   return s->lambdaForce;
 }
 
-/* New active set from the trial tractions; counts the points that changed (global) and tells
-   whether the set equals the one two outer iterations back (cycling between two sets). */
-PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchanged, PetscBool *cycling)
+/* The normal traction that decides whether a closed point opens, at every local point (used at
+   the active ones): the multipliers (converged) with augmentation, the trial traction for the
+   penalty alone; smoothed through the nodes (BOLT_OPEN_NODAL) or the point's own. Collective. */
+PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpen[])
 {
   BoltContactSet *c = s->set;
-  PetscInt        loc[3] = {0, 0, 0}, glob[3];
-  PetscReal      *tnOpen = NULL; /* the normal traction that decides whether a closed point opens */
 
   PetscFunctionBeginUser;
-  /* the traction of a closed point: the multipliers (converged) with augmentation, the trial
-     traction for the penalty alone; an open point has none */
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
@@ -277,13 +307,24 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
       else s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
     }
   }
-  PetscCall(PetscMalloc1(4 * c->nelem + 1, &tnOpen));
   if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tnOpen));
   else
     for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
       const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
       tnOpen[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
     }
+  PetscFunctionReturn(0);
+}
+
+/* New active set from the opening test's tractions (BoltContactStateOpenTraction, or a model's
+   own) and the gaps; counts the points that changed (global) and tells whether the set equals
+   the one two outer iterations back (cycling between two sets). */
+PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal tnOpen[], PetscInt *nchanged, PetscBool *cycling)
+{
+  BoltContactSet *c = s->set;
+  PetscInt        loc[3] = {0, 0, 0}, glob[3];
+
+  PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
@@ -307,10 +348,9 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
         loc[0]++;
         s->dirty[e] = PETSC_TRUE;
         if (!now) s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
-        /* strict law: a pair that closes again slides (normal contact only). It has no stick
-           position to return to short of friction with slip history; tied back to where it
-           started it would snap, and a pair that opened under tension while sticking can
-           penetrate once open, so that stick-open-stick would cycle. */
+        /* strict law: a pair that closes again sticks where it closes (its anchor), or with
+           -contact_reclose slide slides (normal contact only); tied back to where it started it
+           would snap, and stick-open-stick would cycle (docs/model.md section 8) */
         else if (s->law.strict && s->reanchor) BoltContactStateAnchorAt(s, gp);
         else if (s->law.strict) s->released[gp] = PETSC_TRUE;
       }
@@ -319,10 +359,10 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, PetscInt *nchan
       if (now != s->activeOlder[gp]) loc[2]++;
     }
   }
-  PetscCall(PetscFree(tnOpen));
   PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
   *nchanged  = glob[0];
   s->nactive = glob[1];
+  if (glob[0]) BoltContactStateChanged(s);
   /* once points only close (anti-cycling) the set grows and cannot cycle: a return to the set of
      two iterations back is then the points opened just before closing again */
   *cycling   = (!s->closeOnly && glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
@@ -344,6 +384,7 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool ac
     if (active[gp]) nact++;
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
+  BoltContactStateChanged(s);
   PetscCall(MPIU_Allreduce(&nact, &s->nactive, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
   PetscFunctionReturn(0);
 }
@@ -371,6 +412,7 @@ PetscErrorCode BoltContactStateCloseCycle(BoltContactState *s, PetscInt *nclosed
   PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, c->mesh->comm));
   *nclosed   = glob[0];
   s->nactive = glob[1];
+  if (glob[0]) BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 

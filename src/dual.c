@@ -85,11 +85,29 @@ static PetscErrorCode BoltDualGapsOf(BoltDual *d, Vec q, PetscReal gap[])
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(PetscLogEventBegin(boltLog.contactForces, 0, 0, 0, 0));
-  PetscCall(op->ops.contactDisplacements(op, q));
-  PetscCall(BoltContactSetGapsOf(op->contact, gap));
+  if (op->ops.contactGaps) PetscCall(op->ops.contactGaps(op, q, gap));
+  else {
+    PetscCall(op->ops.contactDisplacements(op, q));
+    PetscCall(BoltContactSetGapsOf(op->contact, gap));
+  }
   PetscCall(PetscLogEventEnd(boltLog.contactForces, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   d->tContactForces += t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+/* The active set judged on the last solve: the opening test's tractions (the model's own way, if
+   it has one), then the state's decisions. */
+static PetscErrorCode BoltDualUpdateActive(BoltDual *d, PetscInt *nchanged, PetscBool *cycling)
+{
+  BoltOperator *op = d->op;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
+  if (op->ops.openTraction) PetscCall(op->ops.openTraction(op, d->tnOpen));
+  else PetscCall(BoltContactStateOpenTraction(op->state, d->tnOpen));
+  PetscCall(BoltContactStateUpdateActive(op->state, d->tnOpen, nchanged, cycling));
+  PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -117,7 +135,9 @@ static PetscErrorCode BoltDualInnerUzawa(BoltDual *d, Vec rhs0, Vec q, PetscInt 
     PetscCall(BoltDualSolveWithForces(d, rhs0, BoltContactStateForceMultipliers(s), q));
     PetscCall(BoltDualGapsOf(d, q, s->gap));
     BoltContactStateAnchorGaps(s, s->gap);
+    PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
     PetscCall(BoltContactStateAugment(s, &rel, &pen));
+    PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
     d->lastChange      = rel;
     d->lastPenetration = pen;
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(pen), d->op->comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", d->op->name, d->step, (double)d->time);
@@ -153,6 +173,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
   }
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
     if (!s->active[gp]) s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
+  BoltContactStateChanged(s);
   PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, q));
   PetscCall(VecCopy(d->Fc, d->FcLambda)); /* the contact forces of lambda, kept up to date */
   PetscCall(BoltDualGapsOf(d, q, r));
@@ -180,6 +201,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
       s->lambda[k] += alpha * p[k];
       r[k] -= alpha * Ap[k];
     }
+    BoltContactStateChanged(s);
     PetscCall(VecAXPY(q, -alpha, d->qp));
     /* change of the multipliers, measured by the nodal forces they exert: components of lambda
        that exert no force (there are more Gauss points than nodes) change nothing */
@@ -314,7 +336,7 @@ PetscErrorCode BoltDualSetUp(BoltDual *d)
   PetscCall(VecDuplicate(d->Fc, &d->work));
   PetscCall(VecDuplicate(d->Fc, &d->qp));
   PetscCall(VecDuplicate(d->Fc, &d->FcLambda));
-  PetscCall(PetscMalloc3(ng, &d->cgR, ng, &d->cgP, ng, &d->cgAp));
+  PetscCall(PetscMalloc4(ng, &d->cgR, ng, &d->cgP, ng, &d->cgAp, 4 * op->contact->nelem + 1, &d->tnOpen));
   /* K_eff gets the union of the structural and the contact pattern once, so that it keeps one
      pattern and MUMPS repeats only the numeric factorisation */
   PetscCall(op->ops.contactStiffness(op, &Kc));
@@ -369,6 +391,7 @@ static PetscErrorCode BoltDualCalibrate(BoltDual *d, Vec rhs0, Vec q)
     s->gap[k] *= scale;
     s->anchor[k] *= scale; /* the preload's problem is linear in its scale, positions included */
   }
+  BoltContactStateChanged(s);
   PetscFunctionReturn(0);
 }
 
@@ -429,13 +452,15 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     PetscCall(BoltDualGapsOf(d, q, s->gap));
     BoltContactStateAnchorGaps(s, s->gap);
     solves++;
+    PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
     PetscCall(BoltContactStateAugment(s, &rel, &viol));
+    PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(viol), comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", op->name, d->step, (double)d->time);
     d->lastChange      = rel;
     d->lastPenetration = viol;
     if (d->calibrating) PetscCall(BoltDualCalibrate(d, rhs0, q));
     if (d->keepActiveSet && !d->dynamic) nchanged = 0, cycling = PETSC_FALSE;
-    else PetscCall(BoltContactStateUpdateActive(s, &nchanged, &cycling));
+    else PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, sets, solves, nchanged, cycling));
     if (!nchanged && viol <= d->tolPenetration) break;
     if (nchanged) {
@@ -483,13 +508,16 @@ PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, P
 
     if (refactor) PetscCall(BoltDualFactor(d));
     /* under the penalty law the multipliers are not unknowns (zero, or a ROM's frozen preload) */
-    if (!d->warmStart && s->augment) PetscCall(PetscArrayzero(s->lambda, 12 * op->contact->nelem));
+    if (!d->warmStart && s->augment) {
+      PetscCall(PetscArrayzero(s->lambda, 12 * op->contact->nelem));
+      BoltContactStateChanged(s);
+    }
     PetscCall((*d->inner)(d, rhs0, q, &inner));
     innerTotal += inner;
     if (d->calibrating) PetscCall(BoltDualCalibrate(d, rhs0, q));
     if (d->monitor > 0 && s->augment) PetscCall(BoltContactMonitorTension(d));
     if (d->keepActiveSet && !d->dynamic) break;
-    PetscCall(BoltContactStateUpdateActive(s, &nchanged, &cycling));
+    PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, outer, inner, nchanged, cycling));
     if (!nchanged) break;
     refactor = PETSC_TRUE;
@@ -568,7 +596,7 @@ PetscErrorCode BoltDualDestroy(BoltDual **dp)
   PetscCall(VecDestroy(&d->work));
   PetscCall(VecDestroy(&d->qp));
   PetscCall(VecDestroy(&d->FcLambda));
-  PetscCall(PetscFree3(d->cgR, d->cgP, d->cgAp));
+  PetscCall(PetscFree4(d->cgR, d->cgP, d->cgAp, d->tnOpen));
   PetscCall(MatDestroy(&d->Keff));
   PetscCall(KSPDestroy(&d->ksp));
   PetscCall(PetscFree(*dp));

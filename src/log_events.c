@@ -29,6 +29,7 @@ PetscErrorCode BoltLogRegister(void)
   PetscCall(PetscLogEventRegister("ContactStiffness", classid, &boltLog.contactStiffness));
   PetscCall(PetscLogEventRegister("Displacements", classid, &boltLog.displacements));
   PetscCall(PetscLogEventRegister("ContactForces", classid, &boltLog.contactForces));
+  PetscCall(PetscLogEventRegister("ContactUpdate", classid, &boltLog.contactUpdate));
   PetscCall(PetscLogEventRegister("RomBasis", classid, &boltLog.basis));
   PetscCall(PetscLogEventRegister("RomProjection", classid, &boltLog.projection));
   PetscCall(PetscLogEventRegister("KrylovFactor", classid, &boltLog.krylovFactor));

@@ -479,8 +479,10 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->Vc));
   PetscCall(PetscFree(rom->Vprobe));
   PetscCall(PetscFree(rom->Ke));
-  PetscCall(PetscFree4(rom->work, rom->work2, rom->dK, rom->packed));
+  PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
   PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
+  PetscCall(PetscFree3(rom->gpRows, rom->tnC, rom->tnK));
+  PetscCall(PetscFree2(rom->Rn, rom->gnRow));
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(*romp));

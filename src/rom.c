@@ -3,29 +3,21 @@
    rows of the basis: u_c = V_c q_r, F_r = sum_e D_e' f_e and K_cr = sum_e V_e' K_e V_e (as
    D_e' M_e D_e, updated only for elements whose active points changed), with D_e = V_b - V_a at
    the element's node pairs. Both sums are exact over ranks: the ROM's history has the same bits
-   on any partition. */
+   on any partition. Under the penalty law a time step needs neither u_c nor the sums while the
+   contact state holds: the gaps come from node-pair rows (normal ones on flat surfaces), and
+   the forces, K_cr and the opening test's coefficients are kept with the state's version. */
 #include "boltrom.h"
 #include <petscblaslapack.h>
 
-/* u_c = V_c q. Each row is summed in the same order whatever its position in the rank's block
-   (a BLAS kernel may treat the rows of a vector block and of its tail differently), so a contact
-   DOF gets the same bits on any partition. */
-static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
+/* u = A x for a column-major m x n block A of rows of the basis. Each row is summed in the same
+   order whatever its position in the block (a BLAS kernel may treat the rows of a vector block
+   and of its tail differently), so a row gets the same bits on any partition. */
+static void ROMRowsTimes(PetscInt m, PetscInt n, const PetscScalar *A, const PetscScalar *x, PetscScalar *u)
 {
-  BoltROM           *rom = (BoltROM *)op->ctx;
-  BoltContactSet    *c   = rom->contact;
-  const PetscScalar *x;
-  PetscScalar       *u;
-  const PetscInt     m = c->nlocal;
-
-  PetscFunctionBeginUser;
-  if (!m) PetscFunctionReturn(0);
-  PetscCall(VecGetArrayRead(q, &x));
-  PetscCall(VecGetArray(c->uc, &u));
   for (PetscInt i = 0; i < m; i++) u[i] = 0;
-  for (PetscInt j = 0; j < rom->n; j += 4) { /* four columns per pass over u, still in order j */
-    const PetscInt     nb = PetscMin(4, rom->n - j);
-    const PetscScalar *restrict c0 = rom->Vc + m * j, x0 = x[j];
+  for (PetscInt j = 0; j < n; j += 4) { /* four columns per pass over u, still in order j */
+    const PetscInt     nb = PetscMin(4, n - j);
+    const PetscScalar *restrict c0 = A + m * j, x0 = x[j];
     PetscScalar *restrict       uu = u;
     if (nb == 4) {
       const PetscScalar *restrict c1 = c0 + m, *restrict c2 = c1 + m, *restrict c3 = c2 + m, x1 = x[j + 1], x2 = x[j + 2], x3 = x[j + 3];
@@ -34,6 +26,21 @@ static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
       for (PetscInt k = 0; k < nb; k++)
         for (PetscInt i = 0; i < m; i++) uu[i] += c0[i + m * k] * x[j + k];
   }
+}
+
+/* u_c = V_c q, a contact DOF with the same bits on any partition. */
+static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
+{
+  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltContactSet    *c   = rom->contact;
+  const PetscScalar *x;
+  PetscScalar       *u;
+
+  PetscFunctionBeginUser;
+  if (!c->nlocal) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(q, &x));
+  PetscCall(VecGetArray(c->uc, &u));
+  ROMRowsTimes(c->nlocal, rom->n, rom->Vc, x, u);
   PetscCall(VecRestoreArray(c->uc, &u));
   PetscCall(VecRestoreArrayRead(q, &x));
   PetscFunctionReturn(0);
@@ -42,16 +49,24 @@ static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
 /* F_r = sum_e D_e' f_e over the contact elements of all ranks, f_e the side-b nodal forces of
    the element's Gauss-point tractions (side a takes -f_e). Per element the work does not depend
    on the partition, and the sum over elements is exact on fixed grids (BoltExactSum), so F_r
-   has the same bits on any number of ranks. */
+   has the same bits on any number of ranks. The forces of the state's own multipliers are kept
+   while the state's version holds: under the penalty law they are the same every step. */
 static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F)
 {
   BoltROM        *rom = (BoltROM *)op->ctx;
   BoltContactSet *c   = rom->contact;
   const PetscInt  n   = rom->n;
+  const PetscBool own = (PetscBool)(lambda == op->state->lambda);
   PetscReal       bound = 0, *g = rom->work;
   PetscScalar    *y;
 
   PetscFunctionBeginUser;
+  if (own && rom->FrValid && rom->FrVersion == op->state->version) {
+    PetscCall(VecGetArray(F, &y));
+    PetscCall(PetscArraycpy(y, rom->Fr, n));
+    PetscCall(VecRestoreArray(F, &y));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscReal *f = &rom->felem[12 * e], size = 0;
     BoltContactElementForces(c, e, lambda, f);
@@ -72,6 +87,11 @@ static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[
   }
   PetscCall(VecGetArray(F, &y));
   PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
+  if (own) {
+    PetscCall(PetscArraycpy(rom->Fr, y, n));
+    rom->FrVersion = op->state->version;
+    rom->FrValid   = PETSC_TRUE;
+  }
   PetscCall(VecRestoreArray(F, &y));
   PetscFunctionReturn(0);
 }
@@ -87,6 +107,11 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
   PetscScalar    *K;
 
   PetscFunctionBeginUser;
+  /* the same state as at the last update: nothing is due (and no rank needs to ask the others) */
+  if (rom->KcrValid && rom->KcrVersion == s->version) {
+    *Kc = rom->Kcr;
+    PetscFunctionReturn(0);
+  }
   /* K_e = [M -M; -M M] (B = [-N, N]), so V_e' K_e V_e = D_e' M D_e with D_e = V_b - V_a, the
      relative displacements of the node pairs. Working with D_e spares the directions that open
      no gap the penalty's round-off (through K_e it would be about eps_N |V|^2 u, large under a
@@ -133,7 +158,9 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
     PetscCall(MatAssemblyBegin(rom->Kcr, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(rom->Kcr, MAT_FINAL_ASSEMBLY));
   }
-  *Kc = rom->Kcr;
+  rom->KcrVersion = s->version;
+  rom->KcrValid   = PETSC_TRUE;
+  *Kc             = rom->Kcr;
   PetscFunctionReturn(0);
 }
 
@@ -225,6 +252,181 @@ static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* The gaps at the local contact points from rows of node-pair differences D = V_b - V_a (a
+   sixth or half of the rows of V_c, and free of the cancellation in u_b - u_a), under the
+   penalty law: there the multipliers do not take the trial traction, so the gaps only feed the
+   decisions and the penalty acts through K_cr. On flat surfaces only the normal part,
+   g = (sum_a N_a n' D_a q) n: the decisions read t.n, where the tangential part cancels to
+   round-off. With augmentation (the multipliers take the trial traction): u_c and the set's
+   interpolation, as the full model. */
+static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
+{
+  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltContactSet    *c   = rom->contact;
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  if (op->state->augment) {
+    PetscCall(ROMContactDisplacements(op, q));
+    PetscCall(BoltContactSetGapsOf(c, gap));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecGetArrayRead(q, &x));
+  ROMRowsTimes(rom->nGapRows, rom->n, rom->Rn, x, rom->gnRow);
+  PetscCall(VecRestoreArrayRead(q, &x));
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    const PetscInt  *r = &rom->gpRows[4 * gp];
+    const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp]; /* gpN: 4 per point */
+    PetscReal       *g = &gap[3 * gp];
+    if (rom->normalRows) {
+      PetscReal gn = 0;
+      if (c->quadrature == BOLT_QUADRATURE_NODAL) gn = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4]]) : 0; /* its own node, weight 1 */
+      else
+        for (PetscInt a = 0; a < 4; a++)
+          if (r[a] >= 0) gn += N[a] * PetscRealPart(rom->gnRow[r[a]]);
+      for (PetscInt k = 0; k < 3; k++) g[k] = gn * n[k];
+    } else
+      for (PetscInt k = 0; k < 3; k++) {
+        PetscReal v = 0;
+        for (PetscInt a = 0; a < 4; a++)
+          if (r[a] >= 0) v += N[a] * PetscRealPart(rom->gnRow[r[a] + k]);
+        g[k] = v;
+      }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The opening test's traction. Under the penalty law the trial traction of a point is affine in
+   its gap, t = lambda + P g, so where the test reads t.n of the point alone, or (nodal quadrature,
+   flat surfaces) of the points of its own node pair, its traction is C + K g.n per point: C the
+   test applied to the multipliers, K to the traction of a unit normal gap. Both change only with
+   the state, and are made again (collectively) when its version moves. */
+static PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
+{
+  BoltROM          *rom = (BoltROM *)op->ctx;
+  BoltContactSet   *c   = rom->contact;
+  BoltContactState *s   = op->state;
+  const PetscInt    ngp = 4 * c->nelem;
+
+  PetscFunctionBeginUser;
+  if (s->augment || (s->openTest == BOLT_OPEN_NODAL && !(c->quadrature == BOLT_QUADRATURE_NODAL && rom->flat))) {
+    PetscCall(BoltContactStateOpenTraction(s, tn));
+    PetscFunctionReturn(0);
+  }
+  if (!rom->tnValid || rom->tnVersion != s->version) {
+    for (PetscInt pass = 0; pass < 2; pass++) {
+      PetscReal *out = pass ? rom->tnK : rom->tnC;
+      for (PetscInt gp = 0; gp < ngp; gp++) {
+        const PetscInt   pair = c->elem[gp / 4].pair;
+        const PetscReal *n    = &c->gpNormal[3 * gp], zero[3] = {0, 0, 0};
+        PetscReal       *t    = &c->tau[3 * gp];
+        if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
+        else if (!pass) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
+        else s->law.traction(zero, n, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+      }
+      if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, out));
+      else
+        for (PetscInt gp = 0; gp < ngp; gp++) {
+          const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
+          out[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+        }
+    }
+    rom->tnVersion = s->version;
+    rom->tnValid   = PETSC_TRUE;
+  }
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
+    tn[gp] = rom->tnC[gp] + rom->tnK[gp] * (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A point's normal rounded to 2^-40: the normals of a flat face's points differ in their last
+   bits; rounded, they are one normal, whichever point of whichever rank makes a row. */
+static void ROMRowNormal(const PetscReal n[3], PetscReal nr[3])
+{
+  for (PetscInt k = 0; k < 3; k++) nr[k] = ldexp(rint(ldexp(n[k], 40)), -40);
+}
+
+/* The gap rows, from the elements' D_e so that a row has the same bits on any partition. Whether
+   the surfaces are flat: at every node the normals of all points around it, over all ranks (the
+   nodal area vector sums them), agree with each point's to 1e-12. On flat surfaces one row n' D
+   per node pair and rounded point normal (one per node pair), else the three rows of D. */
+static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
+{
+  BoltContactSet *c = rom->contact;
+  const PetscInt  n = rom->n, ngp = 4 * c->nelem;
+  PetscInt       *first, *next, *rowGp, *rowNode, width;
+  PetscBool       flat = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree3(rom->gpRows, rom->tnC, rom->tnK));
+  PetscCall(PetscFree2(rom->Rn, rom->gnRow));
+  PetscCall(PetscMalloc3(4 * ngp + 1, &rom->gpRows, ngp + 1, &rom->tnC, ngp + 1, &rom->tnK));
+  PetscCall(PetscMalloc4(c->nlocal + 1, &first, 4 * ngp + 1, &next, 4 * ngp + 1, &rowGp, 4 * ngp + 1, &rowNode));
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
+    const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp];
+    for (PetscInt a = 0; a < 4; a++) {
+      const PetscInt *ii = loc[12 + 3 * a] >= 0 ? &loc[12 + 3 * a] : &loc[3 * a]; /* the pair's DOFs on side b, or a */
+      PetscReal       A[3], x[3];
+      if (N[a] == 0 || ii[0] < 0) continue;
+      for (PetscInt k = 0; k < 3; k++) A[k] = c->nodalArea[ii[k]];
+      x[0] = A[1] * n[2] - A[2] * n[1]; /* A x n */
+      x[1] = A[2] * n[0] - A[0] * n[2];
+      x[2] = A[0] * n[1] - A[1] * n[0];
+      if (PetscSqrtReal(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > 1e-12 * PetscSqrtReal(A[0] * A[0] + A[1] * A[1] + A[2] * A[2])) flat = PETSC_FALSE;
+    }
+  }
+  PetscCall(MPIU_Allreduce(&flat, &rom->flat, 1, MPIU_BOOL, MPI_LAND, rom->comm));
+  /* re-closing pairs that stick where they close need the tangential gap too (their anchor) */
+  rom->normalRows = (PetscBool)(rom->flat && !(c->law.strict && c->reanchor));
+  width           = rom->normalRows ? 1 : 3;
+  for (PetscInt i = 0; i < c->nlocal; i++) first[i] = -1;
+  rom->nGapRows = 0;
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
+    const PetscReal *N = &c->gpN[4 * gp];
+    PetscReal        n[3];
+    ROMRowNormal(&c->gpNormal[3 * gp], n);
+    for (PetscInt a = 0; a < 4; a++) {
+      const PetscInt slot = loc[12 + 3 * a] >= 0 ? loc[12 + 3 * a] : loc[3 * a]; /* the pair's first DOF on side b, or a */
+      PetscInt       r;
+      rom->gpRows[4 * gp + a] = -1;
+      PetscCheck(c->quadrature != BOLT_QUADRATURE_NODAL || N[a] == (a == gp % 4 ? 1.0 : 0.0), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Nodal quadrature: point %" PetscInt_FMT " is not at its own node", gp);
+      if (N[a] == 0 || slot < 0) continue; /* no weight, or both sides clamped: no gap */
+      for (r = first[slot]; r >= 0; r = next[r]) {
+        PetscReal m[3];
+        ROMRowNormal(&c->gpNormal[3 * rowGp[r]], m);
+        if (!rom->normalRows || (m[0] == n[0] && m[1] == n[1] && m[2] == n[2])) break;
+      }
+      if (r < 0) {
+        r = rom->nGapRows;
+        rom->nGapRows += width;
+        next[r]     = first[slot];
+        first[slot] = r;
+        rowGp[r]    = gp;
+        rowNode[r]  = a;
+      }
+      rom->gpRows[4 * gp + a] = r;
+    }
+  }
+  PetscCall(PetscMalloc2(rom->nGapRows * n + 1, &rom->Rn, rom->nGapRows + 1, &rom->gnRow));
+  for (PetscInt i = 0; i < c->nlocal; i++)
+    for (PetscInt r = first[i]; r >= 0; r = next[r]) {
+      const PetscReal *D = &rom->De[12 * n * (rowGp[r] / 4) + 3 * rowNode[r]];
+      PetscReal        nr[3];
+      ROMRowNormal(&c->gpNormal[3 * rowGp[r]], nr);
+      for (PetscInt j = 0; j < n; j++) {
+        if (rom->normalRows) rom->Rn[r + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
+        else
+          for (PetscInt k = 0; k < 3; k++) rom->Rn[r + k + rom->nGapRows * j] = D[12 * j + k];
+      }
+    }
+  PetscCall(PetscFree4(first, next, rowGp, rowNode));
+  PetscFunctionReturn(0);
+}
+
 /* The ROM's operator: its matrices, and its own contact state with the ROM's law, penalties and
    opening band. */
 PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
@@ -253,10 +455,11 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
+  rom->KcrValid = rom->FrValid = rom->tnValid = PETSC_FALSE; /* a new state: its versions start afresh */
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscCalloc1(144 * rom->contact->nelem + 1, &rom->Ke));
-  PetscCall(PetscFree4(rom->work, rom->work2, rom->dK, rom->packed));
-  PetscCall(PetscMalloc4(12 * n + 1, &rom->work, 12 * n + 1, &rom->work2, n * n + 1, &rom->dK, n * (n + 1) / 2 + 1, &rom->packed));
+  PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
+  PetscCall(PetscMalloc5(12 * n + 1, &rom->work, 12 * n + 1, &rom->work2, n * n + 1, &rom->dK, n * (n + 1) / 2 + 1, &rom->packed, n + 1, &rom->Fr));
   /* D_e = V_b - V_a of every local contact element, kept for the forces and K_cr */
   {
     BoltContactSet *c = rom->contact;
@@ -275,6 +478,9 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
       rom->DeMax[e] = mx;
     }
   }
+  PetscCall(ROMSetUpGapRows(rom));
+  op->ops.contactGaps  = ROMContactGaps;
+  op->ops.openTraction = ROMOpenTraction;
   *opp = op;
   PetscFunctionReturn(0);
 }
@@ -315,6 +521,7 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
       s->law.traction(lam, g, &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), &s->lambda[3 * gp]);
     }
   }
+  BoltContactStateChanged(s);
   nm->calibratePreload = PETSC_FALSE;
   /* the static state is the FOM's by construction: its active set is not judged again there
      (under the ROM's stiffer penalty, points at the rim whose traction is within the band of
