@@ -56,7 +56,9 @@ static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[
   BoltROM        *rom = (BoltROM *)op->ctx;
   BoltContactSet *c   = rom->contact;
   const PetscInt  n   = rom->n;
-  const PetscBool own = (PetscBool)(lambda == op->state->lambda);
+  /* the state's multipliers, with or without its anchors (a rank without anchors hands lambda
+     itself): a decision every rank takes alike, as the cache skips reductions */
+  const PetscBool own = (PetscBool)(lambda == op->state->lambda || lambda == op->state->lambdaForce);
   PetscReal       bound = 0, *g = rom->work;
   PetscScalar    *y;
 
@@ -273,7 +275,6 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   }
   PetscCall(VecGetArrayRead(q, &x));
   ROMRowsTimes(rom->nGapRows, rom->n, rom->Rn, x, rom->gnRow);
-  PetscCall(VecRestoreArrayRead(q, &x));
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     const PetscInt  *r = &rom->gpRows[4 * gp];
     const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp]; /* gpN: 4 per point */
@@ -285,6 +286,16 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
         for (PetscInt a = 0; a < 4; a++)
           if (r[a] >= 0) gn += N[a] * PetscRealPart(rom->gnRow[r[a]]);
       for (PetscInt k = 0; k < 3; k++) g[k] = gn * n[k];
+      /* an open pair that may close sticks where it closes: its anchor needs the whole gap (from
+         its node pair's rows of D_e, in a fixed order: the same bits on any partition) */
+      if (c->law.strict && c->reanchor && !op->state->active[gp] && c->quadrature == BOLT_QUADRATURE_NODAL) {
+        const PetscReal *D = &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)];
+        for (PetscInt k = 0; k < 3; k++) {
+          PetscReal v = 0;
+          for (PetscInt j = 0; j < rom->n; j++) v += D[12 * j + k] * PetscRealPart(x[j]);
+          g[k] = v;
+        }
+      }
     } else
       for (PetscInt k = 0; k < 3; k++) {
         PetscReal v = 0;
@@ -293,6 +304,7 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
         g[k] = v;
       }
   }
+  PetscCall(VecRestoreArrayRead(q, &x));
   PetscFunctionReturn(0);
 }
 
@@ -379,8 +391,7 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
     }
   }
   PetscCall(MPIU_Allreduce(&flat, &rom->flat, 1, MPIU_BOOL, MPI_LAND, rom->comm));
-  /* re-closing pairs that stick where they close need the tangential gap too (their anchor) */
-  rom->normalRows = (PetscBool)(rom->flat && !(c->law.strict && c->reanchor));
+  rom->normalRows = rom->flat; /* (re-closing pairs' anchors: their whole gap, in ROMContactGaps) */
   width           = rom->normalRows ? 1 : 3;
   for (PetscInt i = 0; i < c->nlocal; i++) first[i] = -1;
   rom->nGapRows = 0;

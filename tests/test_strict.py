@@ -163,3 +163,21 @@ def test_reclosing_pairs_stick_where_they_close(joint_small, tmp_path):
     s = run_summary(scene + ["-output", "false", "-contact_reclose", "slide"], tmp_path / "slide")
     assert_one_sided(s["fom"])
     assert s["fom"]["sliding_points"] > 0 and s["fom"]["reclosed_points"] == 0
+
+
+def test_rom_where_pairs_close_again_same_on_1_and_2_ranks(joint_small, tmp_path):
+    """The interface-reduced ROM on a scene where rim pairs open and close again (anchors on some
+    ranks and not on others): the same bits on one and two ranks, from one ROM file (read back by
+    both: a ROM as built differs from its file at round-off)."""
+    mesh, _ = joint_small
+    rom_file = tmp_path / "r.rom.h5"
+    scene = SCENE + STRICT + ["-mesh", mesh, "-fom", "false", "-rom", "true", "-rom_file", str(rom_file),
+                              "-preload_force", "5000", "-load_force", "100"]
+    run_summary(scene + ["-ts_end", "1e-4", "-output", "false"], tmp_path / "build", ranks=2)
+    hist = {}
+    for ranks in (2, 1):
+        d = tmp_path / f"r{ranks}"
+        run_summary(scene + ["-ts_end", "0.03", "-output_dir", str(d)], d, ranks=ranks)
+        with h5py.File(d / "paper-step.h5") as f:
+            hist[ranks] = np.array(f["rom/probe"])
+    assert np.array_equal(hist[1], hist[2])
