@@ -562,16 +562,22 @@ def build_blocks(level=1.0, n=None, size=0.01):
     mesh.add_merge_group([("lower",) + extrude(P, xs)])
     mesh.add_merge_group([("upper",) + extrude(P, size + xs)])
     mesh.finish()
-    Fa = faces(mesh, "upper", lambda x, y, z: np.abs(z - size) < TOL, which=[0])
-    Fb = faces(mesh, "lower", lambda x, y, z: np.abs(z - size) < TOL, which=[1])
-    Fa, Fb = match_pair(mesh.coords, Fa, Fb)
-    mesh.surfaces["contact_upper_lower_a"] = Fa
-    mesh.surfaces["contact_upper_lower_b"] = Fb
-    mesh.pairs.append("upper_lower")
+    add_flat_pair(mesh, "upper", "lower", size)
     mesh.surfaces["clamp"] = faces(mesh, "lower", lambda x, y, z: np.abs(z) < TOL)
     mesh.surfaces["top"] = faces(mesh, "upper", lambda x, y, z: np.abs(z - 2 * size) < TOL)
     mesh.info = dict(elements=[n, n, n])
     return mesh
+
+
+def add_flat_pair(mesh, part_a, part_b, z0):
+    """The contact pair part_a_part_b between part_a's faces at z = z0 (side a) and part_b's."""
+    Fa = faces(mesh, part_a, lambda x, y, z: np.abs(z - z0) < TOL, which=[0])
+    Fb = faces(mesh, part_b, lambda x, y, z: np.abs(z - z0) < TOL, which=[1])
+    Fa, Fb = match_pair(mesh.coords, Fa, Fb)
+    name = f"{part_a}_{part_b}"
+    mesh.surfaces[f"contact_{name}_a"] = Fa
+    mesh.surfaces[f"contact_{name}_b"] = Fb
+    mesh.pairs.append(name)
 
 
 # The eccentric flat punch: x across the width (centre x = 0), y along the depth, z up.
@@ -597,12 +603,7 @@ def build_punch(level=1.0, eccentricity=None, layer_t=None):
     mesh.add_merge_group([("layer",) + extrude(P, np.linspace(0.0, t, nzl + 1))])
     mesh.add_merge_group([("punch",) + extrude(P, np.linspace(t, t + H, nzp + 1))])
     mesh.finish()
-    Fa = faces(mesh, "punch", lambda x, y, z: np.abs(z - t) < TOL, which=[0])
-    Fb = faces(mesh, "layer", lambda x, y, z: np.abs(z - t) < TOL, which=[1])
-    Fa, Fb = match_pair(mesh.coords, Fa, Fb)
-    mesh.surfaces["contact_punch_layer_a"] = Fa
-    mesh.surfaces["contact_punch_layer_b"] = Fb
-    mesh.pairs.append("punch_layer")
+    add_flat_pair(mesh, "punch", "layer", t)
     mesh.surfaces["clamp"] = faces(mesh, "layer", lambda x, y, z: np.abs(z) < TOL)
     top = faces(mesh, "punch", lambda x, y, z: np.abs(z - t - H) < TOL, which=[1])
     mesh.surfaces["top"] = top
