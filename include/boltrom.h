@@ -210,7 +210,7 @@ PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *, Mat, Mat *);
 PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *, Mat *);
 PetscErrorCode BoltContactSetScatter(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
-PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[]);
+PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[], Vec);
 void           BoltContactElementForces(BoltContactSet *, PetscInt, const PetscReal[], PetscReal[12]);
 PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, const PetscReal[], PetscReal[]);
 PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *, PetscInt, PetscReal, PetscReal, const PetscBool[], const PetscBool[], PetscReal[576]);
@@ -475,8 +475,7 @@ typedef struct {
   /* the gaps from node-pair differences D = V_b - V_a: on flat surfaces the normal gaps n' D q
      (a sixth of the rows of V_c), all that the penalty law's decisions need (the tangential gaps
      act only through the penalty, which is inside K_cr) */
-  PetscBool       flat;              /* the normals of all points at each node agree (global) */
-  PetscBool       normalRows;        /* flat, and no tangential gap needed: one normal row per node pair, else three rows of D */
+  PetscBool       flat;              /* the normals of all points at each node agree (global): one normal row per node pair, else three rows of D */
   PetscInt        nGapRows;
   PetscScalar    *Rn;                /* nGapRows x n, column-major */
   PetscInt       *gpRows;            /* 4 per local point: the row of each node it interpolates (-1: none) */

@@ -568,10 +568,15 @@ PetscErrorCode BoltContactSetGapsOf(BoltContactSet *c, PetscReal gap[])
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[])
+/* F = B' lambda: the nodal forces of the tractions lambda (3 per point) in the global layout of
+   F, both sides of every pair. */
+PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[], Vec F)
 {
   PetscFunctionBeginUser;
   PetscCall(BoltContactForcesInto(c, lambda, c->fc));
+  PetscCall(VecZeroEntries(F));
+  PetscCall(VecScatterBegin(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
   PetscFunctionReturn(0);
 }
 

@@ -253,6 +253,16 @@ static void BoltContactStateAnchorAt(BoltContactState *s, PetscInt gp)
   s->anchored = PETSC_TRUE;
 }
 
+/* Strict law: a pair that closes again sticks where it closes (its anchor), or with
+   -contact_reclose slide slides (normal contact only); tied back to where it started it would
+   snap, and stick-open-stick would cycle (docs/model.md section 8). */
+static void BoltContactStateReclose(BoltContactState *s, PetscInt gp)
+{
+  if (!s->law.strict) return;
+  if (s->reanchor) BoltContactStateAnchorAt(s, gp);
+  else s->released[gp] = PETSC_TRUE;
+}
+
 /* Anchors of a stored state (NULL: none, every closed point sticks where it started). */
 void BoltContactStateSetAnchors(BoltContactState *s, const PetscReal anchor[])
 {
@@ -348,11 +358,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
         loc[0]++;
         s->dirty[e] = PETSC_TRUE;
         if (!now) s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
-        /* strict law: a pair that closes again sticks where it closes (its anchor), or with
-           -contact_reclose slide slides (normal contact only); tied back to where it started it
-           would snap, and stick-open-stick would cycle (docs/model.md section 8) */
-        else if (s->law.strict && s->reanchor) BoltContactStateAnchorAt(s, gp);
-        else if (s->law.strict) s->released[gp] = PETSC_TRUE;
+        else BoltContactStateReclose(s, gp);
       }
       s->active[gp] = now;
       if (now) loc[1]++;
@@ -402,8 +408,7 @@ PetscErrorCode BoltContactStateCloseCycle(BoltContactState *s, PetscInt *nclosed
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     if (!s->active[gp] && s->activeOld[gp]) {
       s->active[gp]     = PETSC_TRUE;
-      if (s->law.strict && s->reanchor) BoltContactStateAnchorAt(s, gp);
-      else if (s->law.strict) s->released[gp] = PETSC_TRUE;
+      BoltContactStateReclose(s, gp);
       s->dirty[gp / 4] = PETSC_TRUE;
       loc[0]++;
     }
@@ -495,10 +500,7 @@ PetscErrorCode BoltContactStateNodalForces(BoltContactState *s, Vec F)
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) BoltContactStateTraction(s, gp / 4, gp, &c->tau[3 * gp]);
-  PetscCall(BoltContactSetForcesOf(c, c->tau));
-  PetscCall(VecZeroEntries(F));
-  PetscCall(VecScatterBegin(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(BoltContactSetForcesOf(c, c->tau, F));
   PetscCall(VecScale(F, -1.0)); /* B' t is on the right-hand side with a minus */
   PetscFunctionReturn(0);
 }

@@ -18,10 +18,7 @@ static PetscErrorCode FOMContactForces(BoltOperator *op, const PetscReal lambda[
   BoltContactSet *c = op->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetForcesOf(c, lambda));
-  PetscCall(VecZeroEntries(F));
-  PetscCall(VecScatterBegin(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(BoltContactSetForcesOf(c, lambda, F));
   PetscFunctionReturn(0);
 }
 

@@ -279,7 +279,7 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
     const PetscInt  *r = &rom->gpRows[4 * gp];
     const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp]; /* gpN: 4 per point */
     PetscReal       *g = &gap[3 * gp];
-    if (rom->normalRows) {
+    if (rom->flat) {
       PetscReal gn = 0;
       if (c->quadrature == BOLT_QUADRATURE_NODAL) gn = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4]]) : 0; /* its own node, weight 1 */
       else
@@ -391,8 +391,7 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
     }
   }
   PetscCall(MPIU_Allreduce(&flat, &rom->flat, 1, MPIU_BOOL, MPI_LAND, rom->comm));
-  rom->normalRows = rom->flat; /* (re-closing pairs' anchors: their whole gap, in ROMContactGaps) */
-  width           = rom->normalRows ? 1 : 3;
+  width = rom->flat ? 1 : 3;
   for (PetscInt i = 0; i < c->nlocal; i++) first[i] = -1;
   rom->nGapRows = 0;
   for (PetscInt gp = 0; gp < ngp; gp++) {
@@ -409,7 +408,7 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
       for (r = first[slot]; r >= 0; r = next[r]) {
         PetscReal m[3];
         ROMRowNormal(&c->gpNormal[3 * rowGp[r]], m);
-        if (!rom->normalRows || (m[0] == n[0] && m[1] == n[1] && m[2] == n[2])) break;
+        if (!rom->flat || (m[0] == n[0] && m[1] == n[1] && m[2] == n[2])) break;
       }
       if (r < 0) {
         r = rom->nGapRows;
@@ -429,7 +428,7 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
       PetscReal        nr[3];
       ROMRowNormal(&c->gpNormal[3 * rowGp[r]], nr);
       for (PetscInt j = 0; j < n; j++) {
-        if (rom->normalRows) rom->Rn[r + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
+        if (rom->flat) rom->Rn[r + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
         else
           for (PetscInt k = 0; k < 3; k++) rom->Rn[r + k + rom->nGapRows * j] = D[12 * j + k];
       }
