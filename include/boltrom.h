@@ -499,6 +499,9 @@ typedef struct {
   PetscReal       penaltyScale;  /* the ROM's penalties: this times the FOM's */
   PetscReal       bandScale;     /* the ROM's activation band (traction): this times the FOM's */
   PetscInt        nClosed;       /* closed-contact Krylov vectors in the basis */
+  PetscReal       openingScale;  /* opening shapes of the pairs this multiple of the load changes (0: none) */
+  PetscInt        nOpenKrylov;   /* opened-joint Krylov vectors with them */
+  PetscInt        nOpeningPairs; /* node pairs with opening shapes in the basis */
   PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
 } BoltROM;
 
@@ -521,6 +524,9 @@ typedef struct {
   PetscReal  staticPenaltyScale;            /* -rom_static_penalty_scale */
   PetscBool  closedKeepActive;              /* -rom_closed_keep_active */
   PetscBool  staticShapes;                  /* -rom_static_shapes */
+  PetscReal  openingScale;                  /* -rom_opening_shapes: the load's scale whose changed pairs get shapes, 0 none */
+  PetscBool  openingScaleSet;               /* given (else the law's default) */
+  PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;
 

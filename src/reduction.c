@@ -4,19 +4,21 @@
 #include "boltrom_krylov.h"
 #include "boltrom_interface.h"
 
-/* Columns e_a - e_b for every matched node pair and direction, then the load and the preload. */
-static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, BV *B, PetscInt *ncols)
+/* The distinct matched node pairs, over all ranks, as (a dof, b dof) of their x component (-1 on a
+   clamped side): every pair of the local elements, or with a mask (4 per element) only those of
+   the points it marks. Every rank gets the same list, in the same order. */
+static PetscErrorCode BoltNodePairs(BoltContactSet *c, const PetscBool mask[], PetscInt *npairsOut, PetscInt **pairsOut)
 {
   MPI_Comm    comm = c->mesh->comm;
-  PetscInt    nloc = 0, npairs, rstart, rend, col = 0, *pairs, *all;
+  PetscInt    nloc = 0, npairs, *pairs, *all;
   PetscMPIInt size, *counts, *displs, mycount;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  /* node pairs of the local elements: (a dof, b dof) of the x component */
   PetscCall(PetscMalloc1(8 * c->nelem + 2, &pairs));
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4; a++) {
+      if (mask && !mask[4 * e + a]) continue;
       pairs[2 * nloc]     = c->elem[e].dofs[3 * a];
       pairs[2 * nloc + 1] = c->elem[e].dofs[12 + 3 * a];
       nloc++;
@@ -53,22 +55,43 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
   }
   PetscCall(PetscFree(all));
   PetscCall(PetscFree2(counts, displs));
+  *npairsOut = npairs;
+  *pairsOut  = pairs;
+  PetscFunctionReturn(0);
+}
+
+/* v = e_a - e_b in direction d of node pair (a, b) (x-component DOFs, -1 if clamped) */
+static PetscErrorCode BoltNodePairVector(PetscInt a, PetscInt b, PetscInt d, Vec v)
+{
+  PetscInt     rstart, rend, ia = a >= 0 ? a + d : -1, ib = b >= 0 ? b + d : -1;
+  PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetOwnershipRange(v, &rstart, &rend));
+  PetscCall(VecGetArray(v, &x));
+  for (PetscInt k = 0; k < rend - rstart; k++) x[k] = 0;
+  if (ia >= rstart && ia < rend) x[ia - rstart] = 1.0;
+  if (ib >= rstart && ib < rend) x[ib - rstart] = -1.0;
+  PetscCall(VecRestoreArray(v, &x));
+  PetscFunctionReturn(0);
+}
+
+/* Columns e_a - e_b for every matched node pair and direction, then the load and the preload. */
+static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, BV *B, PetscInt *ncols)
+{
+  PetscInt npairs, *pairs, col = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltNodePairs(c, NULL, &npairs, &pairs));
   *ncols = 3 * npairs + 2;
-  PetscCall(BVCreate(comm, B));
+  PetscCall(BVCreate(c->mesh->comm, B));
   PetscCall(BVSetSizesFromVec(*B, layout, *ncols));
   PetscCall(BVSetFromOptions(*B));
-  PetscCall(VecGetOwnershipRange(layout, &rstart, &rend));
   for (PetscInt i = 0; i < npairs; i++)
     for (PetscInt d = 0; d < 3; d++) {
-      Vec          v;
-      PetscScalar *x;
-      PetscInt     ia = pairs[2 * i] >= 0 ? pairs[2 * i] + d : -1, ib = pairs[2 * i + 1] >= 0 ? pairs[2 * i + 1] + d : -1;
+      Vec v;
       PetscCall(BVGetColumn(*B, col, &v));
-      PetscCall(VecGetArray(v, &x));
-      for (PetscInt k = 0; k < rend - rstart; k++) x[k] = 0;
-      if (ia >= rstart && ia < rend) x[ia - rstart] = 1.0;
-      if (ib >= rstart && ib < rend) x[ib - rstart] = -1.0;
-      PetscCall(VecRestoreArray(v, &x));
+      PetscCall(BoltNodePairVector(pairs[2 * i], pairs[2 * i + 1], d, v));
       PetscCall(BVRestoreColumn(*B, col, &v));
       col++;
     }
@@ -145,16 +168,19 @@ static PetscErrorCode BoltProjectVec(BV V, Vec f, Vec *fr)
    under the clamp and starts from a tilted state; with q0 in its basis and the FOM's multipliers
    frozen it starts exactly where the FOM does, and the load response gives it one gap-free
    shape, which lets a stiffer penalty carry the increments without locking. */
-static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscBool keepActive, const BoltPreloadState *shared, Vec extra[], Vec *preload)
+static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscBool keepActive, PetscReal openingScale, PetscInt nOpenKrylov, const BoltPreloadState *shared, PetscInt *nextra, Vec **extrap, Vec *preload)
 {
   BoltOperator     *op;
   BoltContactState *s;
   BoltDual         *dual;
   Vec               q, rhs;
   PetscReal         F = loads->preloadForce, outer, inner;
-  PetscInt          nout, nin;
+  PetscInt          nout, nin, npairs = 0, *pairs = NULL;
+  PetscBool        *changed = NULL;
+  Vec              *extra, *openK = NULL;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(2 + nClosed, &extra));
   PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &op)); /* static solves only: no damping */
   s = op->state;
   /* the calibration scales the preload vector and the load response may scale the load: work
@@ -222,6 +248,40 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(VecWAXPY(extra[1], -1.0, extra[0], q));
   PetscCall(VecScale(extra[1], 1.0 / raise));
   PetscCall(PetscPrintf(rom->comm, "; load response (load x %g) %g inner iterations\n", (double)raise, (double)nin));
+  /* Opening shapes: the node pairs whose state the load changes statically at openingScale x its
+     amplitude (a step load overshoots its static response up to twice) */
+  if (openingScale > 0) {
+    PetscCall(VecCopy(op->preload, rhs));
+    PetscCall(VecAXPY(rhs, openingScale / raise, op->load));
+    PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+    PetscCall(PetscMalloc1(4 * c->nelem + 1, &changed));
+    for (PetscInt k = 0; k < 4 * c->nelem; k++) changed[k] = (PetscBool)(s->active[k] != rom->active0[k]);
+    PetscCall(BoltNodePairs(c, changed, &npairs, &pairs));
+    PetscCall(PetscFree(changed));
+    rom->nOpeningPairs = npairs;
+    PetscCall(PetscPrintf(rom->comm, "ROM: %g x the load changes %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed)\n", (double)openingScale, npairs, s->nactive));
+    if (nOpenKrylov > 0) { /* the opened joint's low-frequency shapes, its active set kept */
+      Vec q2, w = extra[1];
+      PetscCall(VecDuplicate(q, &q2));
+      PetscCall(VecCopy(q, q2));
+      PetscCall(PetscMalloc1(nOpenKrylov, &openK));
+      dual->keepActiveSet = PETSC_TRUE;
+      for (PetscInt k = 0; k < nOpenKrylov; k++) {
+        PetscReal nf;
+        PetscCall(MatMult(asmb->M, w, rhs));
+        PetscCall(VecNorm(rhs, NORM_2, &nf));
+        PetscCall(VecScale(rhs, 1e-3 * npre / nf));
+        PetscCall(VecAXPY(rhs, 1.0, op->preload));
+        PetscCall(VecAXPY(rhs, openingScale / raise, op->load));
+        PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+        PetscCall(VecDuplicate(q, &openK[k]));
+        PetscCall(VecWAXPY(openK[k], -1.0, q2, q));
+        w = openK[k];
+      }
+      dual->keepActiveSet = PETSC_FALSE;
+      PetscCall(VecDestroy(&q2));
+    }
+  }
   /* closed-contact Krylov vectors: w_k = static response, from the preloaded state, to M w_(k-1),
      so the basis holds the closed joint's low-frequency shapes too. Forced at 1e-3 of the
      preload's norm: small enough that the joint stays closed, large enough to rise above the
@@ -250,6 +310,38 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
       PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", k + 1, nout, nin, s->nactive));
     }
   }
+  *nextra = 2 + nClosed;
+  /* Each opening shape is the preloaded joint's static response to a unit force pair on one of
+     those node pairs, in one direction. A node pair's penalty is a rank-3 term on its relative
+     displacement, so by Sherman-Morrison the joint's response with that pair open, to any forces
+     on it, lies in the span of its three shapes, and together they span the response of the
+     joint with any subset of those pairs open (Woodbury); the interface modes do not. */
+  if (npairs > 0) {
+    Vec *all;
+    PetscCall(PetscMalloc1(*nextra + 3 * npairs + nOpenKrylov, &all));
+    PetscCall(PetscArraycpy(all, extra, *nextra));
+    PetscCall(PetscFree(extra));
+    extra = all;
+    PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
+    dual->keepActiveSet = PETSC_TRUE;
+    PetscCall(BoltDualSolveStatic(dual, op->preload, q, 0, &nout, &nin)); /* factors K + K_c of the preloaded set */
+    for (PetscInt i = 0; i < npairs; i++)
+      for (PetscInt d = 0; d < 3; d++) {
+        PetscCall(BoltNodePairVector(pairs[2 * i], pairs[2 * i + 1], d, rhs));
+        PetscCall(VecDuplicate(q, &extra[*nextra]));
+        PetscCall(KSPSolve(dual->ksp, rhs, extra[*nextra]));
+        (*nextra)++;
+      }
+    PetscCall(PetscPrintf(rom->comm, "ROM: %" PetscInt_FMT " opening shapes\n", 3 * npairs));
+    for (PetscInt k = 0; k < nOpenKrylov; k++) extra[(*nextra)++] = openK[k];
+    PetscCall(PetscFree(openK));
+  }
+  if (npairs == 0 && openK) { /* no pair changes: the opened joint is the preloaded one */
+    for (PetscInt k = 0; k < nOpenKrylov; k++) PetscCall(VecDestroy(&openK[k]));
+    PetscCall(PetscFree(openK));
+  }
+  PetscCall(PetscFree(pairs));
+  *extrap = extra;
   PetscCall(VecDestroy(&q));
   PetscCall(VecDestroy(&rhs));
   PetscCall(BoltDualDestroy(&dual));
@@ -260,15 +352,22 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
 /* Appends the static shapes to the basis, orthonormalised against it; dependent ones are
    dropped. The remainders are printed: without interface reduction a shape can lie very close to
    the Krylov vectors' span, and the orthogonalisation then amplifies round-off (separate builds
-   on different rank counts differ more than their Krylov vectors do; docs/reduction.md). */
-static PetscErrorCode BoltBasisAppend(BV V, PetscInt nv, Vec v[], PetscInt *added)
+   on different rank counts differ more than their Krylov vectors do; docs/reduction.md). With
+   tol > 0 a shape whose remainder is below tol of its norm is taken for round-off and dropped
+   too (the opened-joint Krylov vectors, where the load opens few pairs, lie that close to the
+   opening shapes' span). */
+static PetscErrorCode BoltBasisAppend(BV V, const char what[], PetscInt nv, Vec v[], PetscReal tol, PetscInt *added)
 {
   PetscInt k, j = 0;
 
   PetscFunctionBeginUser;
   PetscCall(BVGetSizes(V, NULL, NULL, &k));
   PetscCall(BVResize(V, k + nv, PETSC_TRUE));
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), "ROM: static shapes, remainder after orthogonalisation / norm:"));
+  if (nv == 0) {
+    *added = 0;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), "ROM: %s, remainder after orthogonalisation / norm:", what));
   for (PetscInt i = 0; i < nv; i++) {
     PetscReal nrm, n0;
     PetscBool dep;
@@ -276,6 +375,7 @@ static PetscErrorCode BoltBasisAppend(BV V, PetscInt nv, Vec v[], PetscInt *adde
     PetscCall(BVSetActiveColumns(V, 0, k + j + 1));
     PetscCall(BVInsertVec(V, k + j, v[i]));
     PetscCall(BVOrthonormalizeColumn(V, k + j, PETSC_TRUE, &nrm, &dep));
+    if (nrm <= tol * n0) dep = PETSC_TRUE;
     PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), " %.2e%s", (double)(n0 > 0 ? nrm / n0 : 0), dep ? " (dropped)" : ""));
     if (!dep) j++;
   }
@@ -284,6 +384,22 @@ static PetscErrorCode BoltBasisAppend(BV V, PetscInt nv, Vec v[], PetscInt *adde
   PetscCall(BVSetActiveColumns(V, 0, k + j));
   *added = j;
   PetscFunctionReturn(0);
+}
+
+/* The ROM's activation band (the tension at which a closed point opens), relative to the FOM's.
+   Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
+   at the rim of the preloaded zone the FOM's band lets such errors open points the FOM keeps
+   closed. A wider band helps there but not in paper-step (docs/results.md), so 1 stays the default
+   for the stick law. Under the strict law the band (1e-10 E) is its FOM's solver tolerance. An
+   interface-reduced ROM without opening shapes cannot resolve tractions at single rim pairs that
+   finely (its rim pairs then open and close about a hundred times in paper-step at level 1 while
+   the FOM's set holds) and judges with the stick law's band, 2e5 times the strict one. With
+   opening shapes it can open the pairs the load opens, and keeps the strict band (docs/reduction.md).
+   Which applies is known once the basis is. */
+static PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom)
+{
+  if (o->bandScale > 0) return o->bandScale;
+  return contact->law.strict && !rom->augment && rom->nOpeningPairs == 0 ? 2e5 : 1.0;
 }
 
 PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM **romp)
@@ -319,18 +435,14 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
      Krylov shapes so stiff a penalty locks the reduced interface, and 4e3 E/m (20 x the paper's)
      does best (docs/reduction.md). The scale is relative to the FOM's penalty, whatever its law. */
   rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augment ? (o->nClosed > 0 ? 1e5 : 4e3) / contact->penaltyFactor : 1.0);
-  /* Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
-     at the rim of the preloaded zone the FOM's band lets such errors open points the FOM keeps
-     closed. A wider band helps there but not in paper-step (docs/results.md), so 1 stays the default
-     for the stick law. The strict law's band (1e-10 E) is its FOM's solver tolerance, far below what
-     the reduced tractions resolve at single rim pairs (tens of kilopascals on paper-step at level 1,
-     where they then open and close about a hundred times while the FOM's set holds): its
-     penalty-law ROM judges with the stick law's band, 200 E x 1e-7 m, i.e. 2e5 times its own.
-     A ROM that closes its gaps exactly (no interface reduction) keeps the law's own band. */
-  rom->bandScale = o->bandScale > 0 ? o->bandScale : (contact->law.strict && !rom->augment ? 2e5 : 1.0);
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
   staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && loads->hasPreload && loads->preloadForce != 0));
   rom->nClosed = staticShapes ? o->nClosed : 0;
+  /* Opening shapes by default for the interface-reduced ROM under the strict law (the ROM without
+     interface reduction has every node pair's force among its inputs; the stick law's scenes are
+     the paper's, whose figures stay as they were) */
+  rom->openingScale = staticShapes ? (o->openingScaleSet ? o->openingScale : (contact->law.strict && rom->preloadState ? o->openingScale : 0.0)) : 0;
+  rom->nOpenKrylov  = rom->openingScale > 0 ? o->nOpenKrylov : 0;
   staticPenaltyScale = o->staticPenaltyScale > 0 ? o->staticPenaltyScale : PetscMax(1.0, 2e6 / contact->penaltyFactor); /* 2e6 E/m */
   if (staticShapes) {
     char more[64];
@@ -341,6 +453,10 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     }
     PetscCall(PetscSNPrintf(more, sizeof(more), "; static penalty x %g", (double)staticPenaltyScale));
     PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
+    if (rom->openingScale > 0) {
+      PetscCall(PetscSNPrintf(more, sizeof(more), "; opening shapes at %g x the load, %" PetscInt_FMT " opened-joint Krylov", (double)rom->openingScale, rom->nOpenKrylov));
+      PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
+    }
   }
   if (o->file[0]) {
     PetscBool exists, matched;
@@ -354,8 +470,10 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         loaded->tOffline = t3 - t0;
         loaded->augment  = rom->augment;
         loaded->penaltyScale = rom->penaltyScale;
-        loaded->bandScale    = rom->bandScale;
         loaded->nClosed      = rom->nClosed;
+        loaded->openingScale = rom->openingScale;
+        loaded->nOpenKrylov  = rom->nOpenKrylov;
+        loaded->bandScale    = BoltROMDefaultBand(o, contact, loaded);
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
         PetscCall(PetscFree(rom));
@@ -401,20 +519,23 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscCall(BoltMemoryRelease());
   PetscCall(BoltMemoryPrint(o->comm, "the Krylov basis"));
   if (staticShapes) {
-    Vec      extra[18];
-    PetscInt added, nextra = 2 + o->nClosed;
+    Vec     *extra;
+    PetscInt added, nextra;
     PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
-    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->closedKeepActive, o->fomPreload, extra, &preloadCalibrated));
+    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->closedKeepActive, rom->openingScale, rom->nOpenKrylov, o->fomPreload, &nextra, &extra, &preloadCalibrated));
     PetscCall(BoltMemoryPrint(o->comm, "the preloaded state's static solves"));
     PetscCall(BoltAssemblerDamping(asmb, &C));
-    PetscCall(BoltBasisAppend(V, nextra, extra, &added));
+    PetscCall(BoltBasisAppend(V, "static shapes", 2 + o->nClosed, extra, 0, &added));
+    PetscCall(BoltBasisAppend(V, "opening shapes", nextra - 2 - o->nClosed, extra + 2 + o->nClosed, kry->deflationTol, &added));
     for (PetscInt k = 0; k < nextra; k++) PetscCall(VecDestroy(&extra[k]));
+    PetscCall(PetscFree(extra));
     if (!rom->preloadState) { /* shapes only: the augmented ROM solves its own preload */
       PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
       PetscCall(VecDestroy(&preloadCalibrated));
     }
     PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
   }
+  rom->bandScale = BoltROMDefaultBand(o, contact, rom);
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;

@@ -35,7 +35,7 @@ PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLo
 
   PetscFunctionBeginUser;
   PetscCall(BoltFileHash(m->comm, m->filename, &h));
-  PetscCall(PetscSNPrintf(fp, len, "format 7; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
+  PetscCall(PetscSNPrintf(fp, len, "format 8; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
   for (PetscInt p = 0; p < m->nparts; p++) {
     const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
     PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g %.6g %.6g", m->partName[p], (double)mat->E, (double)mat->nu, (double)mat->rho));
@@ -311,6 +311,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "inputs", PETSC_INT, &rom->ninputs));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "n_ccm", PETSC_INT, &rom->nCCM));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "n_jim", PETSC_INT, &rom->nJIM));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "opening_pairs", PETSC_INT, &rom->nOpeningPairs));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "s0", PETSC_REAL, &rom->s0));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "offline_s", PETSC_REAL, &rom->tOffline));
   PetscCall(PetscViewerDestroy(&v));
@@ -359,6 +360,7 @@ PetscErrorCode BoltROMLoad(const char file[], const char fingerprint[], BoltRedu
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "inputs", PETSC_INT, NULL, &rom->ninputs));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "n_ccm", PETSC_INT, NULL, &rom->nCCM));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "n_jim", PETSC_INT, NULL, &rom->nJIM));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "opening_pairs", PETSC_INT, NULL, &rom->nOpeningPairs));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "s0", PETSC_REAL, NULL, &rom->s0));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, NULL, &groups));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "input_load", PETSC_STRING, NULL, &input));

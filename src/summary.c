@@ -183,6 +183,8 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONReal(j, "contact_penalty_scale", rom->penaltyScale));
   PetscCall(BoltJSONReal(j, "contact_band_scale", rom->bandScale));
   PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
+  PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
+  PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));
   PetscCall(SummaryNewmarkRun(j, s->romRun, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));
   if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(j, "orthogonality", rom->orthogonality));
