@@ -248,18 +248,22 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(VecWAXPY(extra[1], -1.0, extra[0], q));
   PetscCall(VecScale(extra[1], 1.0 / raise));
   PetscCall(PetscPrintf(rom->comm, "; load response (load x %g) %g inner iterations\n", (double)raise, (double)nin));
-  /* Opening shapes: the node pairs whose state the load changes statically at openingScale x its
-     amplitude (a step load overshoots its static response up to twice) */
+  /* Opening shapes: the node pairs whose state the load changes statically at -openingScale or
+     +openingScale x its amplitude (a step load's response swings up to twice its static one, a
+     sine load's to either side). The positive one last: its state starts the opened-joint
+     Krylov vectors. */
   if (openingScale > 0) {
-    PetscCall(VecCopy(op->preload, rhs));
-    PetscCall(VecAXPY(rhs, openingScale / raise, op->load));
-    PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
-    PetscCall(PetscMalloc1(4 * c->nelem + 1, &changed));
-    for (PetscInt k = 0; k < 4 * c->nelem; k++) changed[k] = (PetscBool)(s->active[k] != rom->active0[k]);
+    PetscCall(PetscCalloc1(4 * c->nelem + 1, &changed));
+    for (PetscInt sign = -1; sign <= 1; sign += 2) {
+      PetscCall(VecCopy(op->preload, rhs));
+      PetscCall(VecAXPY(rhs, sign * openingScale / raise, op->load));
+      PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+      for (PetscInt k = 0; k < 4 * c->nelem; k++) changed[k] = (PetscBool)(changed[k] || s->active[k] != rom->active0[k]);
+    }
     PetscCall(BoltNodePairs(c, changed, &npairs, &pairs));
     PetscCall(PetscFree(changed));
     rom->nOpeningPairs = npairs;
-    PetscCall(PetscPrintf(rom->comm, "ROM: %g x the load changes %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed)\n", (double)openingScale, npairs, s->nactive));
+    PetscCall(PetscPrintf(rom->comm, "ROM: -/+ %g x the load change %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed under +)\n", (double)openingScale, npairs, s->nactive));
     if (nOpenKrylov > 0) { /* the opened joint's low-frequency shapes, its active set kept */
       Vec q2, w = extra[1];
       PetscCall(VecDuplicate(q, &q2));
@@ -454,7 +458,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     PetscCall(PetscSNPrintf(more, sizeof(more), "; static penalty x %g", (double)staticPenaltyScale));
     PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
     if (rom->openingScale > 0) {
-      PetscCall(PetscSNPrintf(more, sizeof(more), "; opening shapes at %g x the load, %" PetscInt_FMT " opened-joint Krylov", (double)rom->openingScale, rom->nOpenKrylov));
+      PetscCall(PetscSNPrintf(more, sizeof(more), "; opening shapes at -/+ %g x the load, %" PetscInt_FMT " opened-joint Krylov", (double)rom->openingScale, rom->nOpenKrylov));
       PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
     }
   }
