@@ -264,7 +264,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
     PetscCall(PetscFree(changed));
     rom->nOpeningPairs = npairs;
     PetscCall(PetscPrintf(rom->comm, "ROM: -/+ %g x the load change %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed under +)\n", (double)openingScale, npairs, s->nactive));
-    if (nOpenKrylov > 0) { /* the opened joint's low-frequency shapes, its active set kept */
+    if (nOpenKrylov > 0 && npairs > 0) { /* the opened joint's low-frequency shapes, its active set kept (none when no pair changes: it is the preloaded joint) */
       Vec q2, w = extra[1];
       PetscCall(VecDuplicate(q, &q2));
       PetscCall(VecCopy(q, q2));
@@ -338,10 +338,6 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
       }
     PetscCall(PetscPrintf(rom->comm, "ROM: %" PetscInt_FMT " opening shapes\n", 3 * npairs));
     for (PetscInt k = 0; k < nOpenKrylov; k++) extra[(*nextra)++] = openK[k];
-    PetscCall(PetscFree(openK));
-  }
-  if (npairs == 0 && openK) { /* no pair changes: the opened joint is the preloaded one */
-    for (PetscInt k = 0; k < nOpenKrylov; k++) PetscCall(VecDestroy(&openK[k]));
     PetscCall(PetscFree(openK));
   }
   PetscCall(PetscFree(pairs));
