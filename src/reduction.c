@@ -161,6 +161,32 @@ static PetscErrorCode BoltProjectVec(BV V, Vec f, Vec *fr)
   PetscFunctionReturn(0);
 }
 
+/* Static Krylov vectors of the joint in its current contact state: out[k] = q(base + f_k) - qBase,
+   with f_k = M out[k-1] (f_0 = M w0) scaled to the norm nforce, each solved by the dual loop from
+   the state left by the one before (keepActiveSet, if set, holds the active set). work is
+   overwritten. */
+static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBase, Vec w0, PetscReal nforce, PetscInt n, const char what[], Vec work, Vec rhs, Vec q, Vec out[])
+{
+  BoltOperator *op = dual->op;
+  PetscInt      nout, nin;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < n; k++) {
+    PetscReal nf;
+    PetscCall(MatMult(M, k ? out[k - 1] : w0, work));
+    PetscCall(VecNorm(work, NORM_2, &nf));
+    PetscCheck(nf > 0, op->comm, PETSC_ERR_NOT_CONVERGED, "%s Krylov vector %" PetscInt_FMT " is zero", what, k + 1);
+    PetscCall(VecScale(work, (nforce > 0 ? nforce : 1.0) / nf));
+    PetscCall(VecCopy(base, rhs));
+    PetscCall(VecAXPY(rhs, 1.0, work));
+    PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+    PetscCall(VecDuplicate(q, &out[k]));
+    PetscCall(VecWAXPY(out[k], -1.0, qBase, q));
+    PetscCall(PetscPrintf(op->comm, "ROM: %s Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", what, k + 1, nout, nin, op->state->nactive));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The FOM's static preloaded equilibrium (the FOM run's if it ran, else solved here): q0, the
    multipliers (per newton of preload) and the active set, then the static response to the scene's load from that state with the
    contact closed by the augmented Lagrangian. The interface-reduced ROM cannot close its gaps
@@ -265,25 +291,19 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
     rom->nOpeningPairs = npairs;
     PetscCall(PetscPrintf(rom->comm, "ROM: -/+ %g x the load change %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed under +)\n", (double)openingScale, npairs, s->nactive));
     if (nOpenKrylov > 0 && npairs > 0) { /* the opened joint's low-frequency shapes, its active set kept (none when no pair changes: it is the preloaded joint) */
-      Vec q2, w = extra[1];
+      Vec base, q2, work;
+      PetscCall(VecDuplicate(q, &base));
       PetscCall(VecDuplicate(q, &q2));
+      PetscCall(VecDuplicate(q, &work));
+      PetscCall(VecCopy(rhs, base)); /* the + solve's right-hand side and state */
       PetscCall(VecCopy(q, q2));
       PetscCall(PetscMalloc1(nOpenKrylov, &openK));
       dual->keepActiveSet = PETSC_TRUE;
-      for (PetscInt k = 0; k < nOpenKrylov; k++) {
-        PetscReal nf;
-        PetscCall(MatMult(asmb->M, w, rhs));
-        PetscCall(VecNorm(rhs, NORM_2, &nf));
-        PetscCall(VecScale(rhs, 1e-3 * npre / nf));
-        PetscCall(VecAXPY(rhs, 1.0, op->preload));
-        PetscCall(VecAXPY(rhs, openingScale / raise, op->load));
-        PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
-        PetscCall(VecDuplicate(q, &openK[k]));
-        PetscCall(VecWAXPY(openK[k], -1.0, q2, q));
-        w = openK[k];
-      }
+      PetscCall(BoltStaticKrylov(dual, asmb->M, base, q2, extra[1], 1e-3 * npre, nOpenKrylov, "opened-joint", work, rhs, q, openK));
       dual->keepActiveSet = PETSC_FALSE;
+      PetscCall(VecDestroy(&base));
       PetscCall(VecDestroy(&q2));
+      PetscCall(VecDestroy(&work));
     }
   }
   /* closed-contact Krylov vectors: w_k = static response, from the preloaded state, to M w_(k-1),
@@ -294,25 +314,14 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
      over the whole volume, opens points at the rim on fine meshes, and the basis of that opened
      joint is less accurate than the one with the set kept (docs/reduction.md) */
   if (nClosed > 0) {
-    Vec       f      = op->load; /* this solve's own copy: the forcing of each vector in turn */
-    PetscReal nforce = 1e-3 * npre, nf;
+    PetscReal nforce = 1e-3 * npre;
     PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)nforce, (double)nload, (double)npre));
     if (keepActive) {
       PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
       dual->keepActiveSet = PETSC_TRUE;
     }
-    for (PetscInt k = 0; k < nClosed; k++) {
-      PetscCall(MatMult(asmb->M, extra[1 + k], f));
-      PetscCall(VecNorm(f, NORM_2, &nf));
-      PetscCheck(nf > 0, rom->comm, PETSC_ERR_NOT_CONVERGED, "closed-contact Krylov vector %" PetscInt_FMT " is zero", k + 1);
-      PetscCall(VecScale(f, (nforce > 0 ? nforce : 1.0) / nf));
-      PetscCall(VecCopy(op->preload, rhs));
-      PetscCall(VecAXPY(rhs, 1.0, f));
-      PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
-      PetscCall(VecDuplicate(q, &extra[2 + k]));
-      PetscCall(VecWAXPY(extra[2 + k], -1.0, extra[0], q));
-      PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", k + 1, nout, nin, s->nactive));
-    }
+    /* op->load, this solve's own copy, is the forcing of each vector in turn */
+    PetscCall(BoltStaticKrylov(dual, asmb->M, op->preload, extra[0], extra[1], nforce, nClosed, "closed-contact", op->load, rhs, q, &extra[2]));
   }
   *nextra = 2 + nClosed;
   /* Each opening shape is the preloaded joint's static response to a unit force pair on one of
@@ -326,9 +335,11 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
     PetscCall(PetscArraycpy(all, extra, *nextra));
     PetscCall(PetscFree(extra));
     extra = all;
-    PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
-    dual->keepActiveSet = PETSC_TRUE;
-    PetscCall(BoltDualSolveStatic(dual, op->preload, q, 0, &nout, &nin)); /* factors K + K_c of the preloaded set */
+    if (!(keepActive && nClosed > 0)) { /* else the closed-contact vectors' last solve factored K + K_c of the preloaded set */
+      PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
+      dual->keepActiveSet = PETSC_TRUE;
+      PetscCall(BoltDualSolveStatic(dual, op->preload, q, 0, &nout, &nin));
+    }
     for (PetscInt i = 0; i < npairs; i++)
       for (PetscInt d = 0; d < 3; d++) {
         PetscCall(BoltNodePairVector(pairs[2 * i], pairs[2 * i + 1], d, rhs));
