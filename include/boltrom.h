@@ -284,6 +284,7 @@ PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **);
    its own coordinates, its contact state, and the maps to and from the contact DOFs. FOM and
    ROM both provide one, through an ops table. */
 typedef struct BoltOperator_s BoltOperator;
+typedef struct BoltDual_s     BoltDual;
 typedef struct {
   PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);             /* q -> contact->uc */
   PetscErrorCode (*contactForces)(BoltOperator *, const PetscReal[], Vec); /* Gauss-point tractions -> F (overwritten) */
@@ -299,6 +300,9 @@ typedef struct {
   PetscErrorCode (*stateLoad)(BoltOperator *, PetscViewer);
   PetscErrorCode (*view)(BoltOperator *, PetscViewer);
   PetscErrorCode (*destroy)(BoltOperator *);
+  /* optional, else the dual loop factorises K_eff afresh and solves with it: */
+  PetscErrorCode (*factor)(BoltOperator *, BoltDual *);          /* after a change of the active set */
+  PetscErrorCode (*solve)(BoltOperator *, BoltDual *, Vec, Vec); /* K_eff x = b */
 } BoltOperatorOps;
 
 struct BoltOperator_s {
@@ -342,7 +346,6 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, P
 /* The dual contact loop for one linear system K_eff q = rhs - B' lambda (the paper's Algorithm
    1): outer iterations on the active set, inner iterations on the multipliers by a registered
    inner solver (uzawa, cg). The time integrator and the offline static solves both use it. */
-typedef struct BoltDual_s BoltDual;
 typedef PetscErrorCode (*BoltDualInnerFn)(BoltDual *, Vec, Vec, PetscInt *);
 extern PetscFunctionList BoltDualInnerList;
 PetscErrorCode BoltDualInnerRegister(const char[], BoltDualInnerFn);
@@ -373,7 +376,7 @@ struct BoltDual_s {
   PetscReal      *tnOpen;         /* per Gauss point: the traction of the opening test */
   PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
   /* counters and phase times (the paper's Table 2) */
-  PetscInt        factorizations, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
+  PetscInt        factorizations, updates, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
   PetscReal       tContactStiffness, tDisplacements, tContactForces;
   PetscReal       lastChange, lastPenetration; /* of the last inner iteration */
   /* strict law: the worst converged state so far (BoltContactStateComplementarity) */
@@ -445,6 +448,8 @@ typedef struct {
 } BoltExactSum;
 PetscErrorCode BoltExactSumBegin(BoltExactSum *, PetscInt, PetscReal, PetscInt);
 void           BoltExactSumAdd(BoltExactSum *, const PetscReal[]);
+void           BoltExactSumAddParts(BoltExactSum *, const PetscReal[], PetscReal[], PetscReal[]);
+void           BoltExactSumRemove(BoltExactSum *, const PetscReal[], const PetscReal[]);
 PetscErrorCode BoltExactSumEnd(BoltExactSum *, MPI_Comm, PetscReal[]);
 PetscErrorCode BoltExactSumDestroy(BoltExactSum *);
 
@@ -503,7 +508,24 @@ typedef struct {
   PetscInt        nOpenKrylov;   /* opened-joint Krylov vectors with them */
   PetscInt        nOpeningPairs; /* node pairs with opening shapes in the basis */
   PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
+  PetscInt        updateRank;    /* -rom_update_rank as given (-1: the default) */
+  PetscInt        updateRankUsed; /* as resolved when the operator was made (0: refactorise) */
+  struct BoltROMUpdate_s *update; /* low-rank updates of the online factorisation (rom_update.c), or NULL */
+  /* with them, F_r of the state's multipliers is updated for the elements whose forces changed */
+  PetscReal      *fAcc;          /* 2n: this rank's exact partial sums */
+  PetscReal      *fOwn, *fNew;   /* 12 per local contact element: the forces in fAcc, and scratch */
+  PetscReal      *fParts;        /* 2n per local contact element: its term's parts in fAcc */
+  PetscReal       fGridBound;    /* the bound the sums' grid was set for (kept by checkpoints) */
+  PetscBool       fGridValid, fPartsValid;
 } BoltROM;
+
+/* rom_update.c: the online factorisation kept across changes of the active set */
+typedef struct BoltROMUpdate_s BoltROMUpdate;
+PetscErrorCode BoltROMUpdateCreate(BoltROM *, BoltOperator *, PetscInt);
+PetscErrorCode BoltROMUpdateSettle(BoltOperator *);
+void           BoltROMUpdateSummed(BoltROMUpdate *, BoltROM *, PetscInt);
+PetscErrorCode BoltROMUpdateView(BoltROMUpdate *, PetscViewer);
+PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **);
 
 #include "boltrom_krylov.h" /* BoltKrylov: the basis's options */
 
@@ -526,6 +548,7 @@ typedef struct {
   PetscBool  staticShapes;                  /* -rom_static_shapes */
   PetscReal  openingScale;                  /* -rom_opening_shapes: the load's scale whose changed pairs get shapes, 0 none */
   PetscBool  openingScaleSet;               /* given (else the law's default) */
+  PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
   PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;

@@ -13,7 +13,7 @@
 #include <petscviewerhdf5.h>
 #include <ctype.h>
 
-#define BOLT_CKPT_NGLOBALS 14
+#define BOLT_CKPT_NGLOBALS 15
 #define BOLT_CKPT_CONTACT  BOLT_CONTACT_PACK
 
 static PetscErrorCode BoltCheckpointFingerprint(BoltNewmark *nm, char fp[], size_t len)
@@ -109,7 +109,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   PetscCall(BoltHDF5WriteValues(v, comm, "contact_state", BOLT_CKPT_CONTACT * ne, 1, buf, PETSC_FALSE));
   {
     BoltDual *d                     = nm->dual;
-    PetscReal g[BOLT_CKPT_NGLOBALS] = {(PetscReal)nm->step, (PetscReal)nm->nsnap, (PetscReal)d->factorizations, (PetscReal)d->solves, (PetscReal)d->outerTotal, (PetscReal)d->innerTotal, (PetscReal)d->outerMax, (PetscReal)d->innerMax, (PetscReal)d->cycles, (PetscReal)d->failures, d->tContactStiffness, d->tDisplacements, d->tContactForces, nm->tOnline};
+    PetscReal g[BOLT_CKPT_NGLOBALS] = {(PetscReal)nm->step, (PetscReal)nm->nsnap, (PetscReal)d->factorizations, (PetscReal)d->solves, (PetscReal)d->outerTotal, (PetscReal)d->innerTotal, (PetscReal)d->outerMax, (PetscReal)d->innerMax, (PetscReal)d->cycles, (PetscReal)d->failures, d->tContactStiffness, d->tDisplacements, d->tContactForces, nm->tOnline, (PetscReal)d->updates};
     k = 0;
     for (PetscInt i = 0; i < BOLT_CKPT_NGLOBALS; i++) buf[k++] = g[i];
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->probeTime[i];
@@ -237,6 +237,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   nm->dual->tDisplacements    = h[k++];
   nm->dual->tContactForces    = h[k++];
   nm->tOnlineBefore     = h[k++];
+  nm->dual->updates     = (PetscInt)h[k++];
   for (PetscInt i = 0; i <= step; i++) nm->probeTime[i] = h[k++];
   for (PetscInt i = 0; i <= step; i++) nm->probeValue[i] = h[k++];
   for (PetscInt i = 0; i <= step; i++) nm->energy[i] = h[k++];

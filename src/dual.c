@@ -14,7 +14,7 @@ PetscErrorCode BoltDualInnerRegister(const char name[], BoltDualInnerFn fn)
 }
 
 /* K_eff = K + K_c (static) or a1 M + a4 C + K + K_c, factorised. */
-static PetscErrorCode BoltDualFactor(BoltDual *d)
+static PetscErrorCode BoltDualFactorAfresh(BoltDual *d)
 {
   BoltOperator  *op = d->op;
   Mat            Kc;
@@ -53,6 +53,16 @@ static PetscErrorCode BoltDualFactor(BoltDual *d)
   PetscFunctionReturn(0);
 }
 
+/* After a change of the active set: the operator's own update of its factorisation if it has
+   one (the ROM's low-rank updates), else a new one. */
+static PetscErrorCode BoltDualFactor(BoltDual *d)
+{
+  PetscFunctionBeginUser;
+  if (d->op->ops.factor) PetscCall(d->op->ops.factor(d->op, d));
+  else PetscCall(BoltDualFactorAfresh(d));
+  PetscFunctionReturn(0);
+}
+
 /* Timed pieces of the inner loops: q = K_eff^-1 (rhs0 - B' lambda), and the gaps of q. */
 static PetscErrorCode BoltDualSolveWithForces(BoltDual *d, Vec rhs0, const PetscReal lambda[], Vec q)
 {
@@ -68,7 +78,8 @@ static PetscErrorCode BoltDualSolveWithForces(BoltDual *d, Vec rhs0, const Petsc
   PetscCall(PetscLogEventEnd(boltLog.contactForces, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   PetscCall(PetscLogEventBegin(boltLog.displacements, 0, 0, 0, 0));
-  PetscCall(KSPSolve(d->ksp, d->work, q));
+  if (op->ops.solve) PetscCall(op->ops.solve(op, d, d->work, q));
+  else PetscCall(KSPSolve(d->ksp, d->work, q));
   PetscCall(PetscLogEventEnd(boltLog.displacements, 0, 0, 0, 0));
   PetscCall(PetscTime(&t2));
   d->solves++;
@@ -563,7 +574,7 @@ PetscErrorCode BoltDualSolveStatic(BoltDual *d, Vec rhs, Vec q, PetscReal target
 PetscErrorCode BoltDualResetCounters(BoltDual *d)
 {
   PetscFunctionBeginUser;
-  d->factorizations = d->solves = d->outerTotal = d->innerTotal = d->outerMax = d->innerMax = 0;
+  d->factorizations = d->updates = d->solves = d->outerTotal = d->innerTotal = d->outerMax = d->innerMax = 0;
   d->worstPenetration = d->worstTension = d->worstCompression = d->worstProduct = 0;
   d->tContactStiffness = d->tDisplacements = d->tContactForces = 0;
   PetscFunctionReturn(0);
@@ -572,7 +583,7 @@ PetscErrorCode BoltDualResetCounters(BoltDual *d)
 PetscErrorCode BoltDualView(BoltDual *d, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact loop (%s inner): %" PetscInt_FMT " factorisations, %" PetscInt_FMT " solves, outer %" PetscInt_FMT " (max %" PetscInt_FMT "), inner %" PetscInt_FMT " (max %" PetscInt_FMT "/solve)\n", d->innerType, d->factorizations, d->solves, d->outerTotal, d->outerMax, d->innerTotal, d->innerMax));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  contact loop (%s inner): %" PetscInt_FMT " factorisations, %" PetscInt_FMT " low-rank updates, %" PetscInt_FMT " solves, outer %" PetscInt_FMT " (max %" PetscInt_FMT "), inner %" PetscInt_FMT " (max %" PetscInt_FMT "/solve)\n", d->innerType, d->factorizations, d->updates, d->solves, d->outerTotal, d->outerMax, d->innerTotal, d->innerMax));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  phases: contact stiffness %.3f s, displacements %.3f s, contact forces %.3f s\n", (double)d->tContactStiffness, (double)d->tDisplacements, (double)d->tContactForces));
   PetscFunctionReturn(0);
 }

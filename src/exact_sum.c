@@ -51,6 +51,36 @@ void BoltExactSumAdd(BoltExactSum *s, const PetscReal x_[])
   }
 }
 
+/* As BoltExactSumAdd, keeping the parts x was split into (p1 on the first grid, p2 on the
+   second), so that BoltExactSumRemove can take the same term out again exactly. */
+void BoltExactSumAddParts(BoltExactSum *s, const PetscReal x_[], PetscReal p1_[], PetscReal p2_[])
+{
+  const PetscReal s1 = s->sigma[0], s2 = s->sigma[1];
+  PetscReal *restrict       a1 = s->acc, *restrict a2 = s->acc + s->n, *restrict p1 = p1_, *restrict p2 = p2_;
+  const PetscReal *restrict x = x_;
+
+  for (PetscInt j = 0; j < s->n; j++) {
+    PetscReal v = x[j], q = s1 == 0 ? 0 : (s1 + v) - s1, r;
+    v -= q;
+    r = s1 == 0 ? 0 : (s2 + v) - s2;
+    a1[j] += q;
+    a2[j] += r;
+    p1[j] = q;
+    p2[j] = r;
+  }
+}
+
+/* acc -= a term's parts from BoltExactSumAddParts on the same grids: exact, as the sum held it. */
+void BoltExactSumRemove(BoltExactSum *s, const PetscReal p1[], const PetscReal p2[])
+{
+  PetscReal *restrict a1 = s->acc, *restrict a2 = s->acc + s->n;
+
+  for (PetscInt j = 0; j < s->n; j++) {
+    a1[j] -= p1[j];
+    a2[j] -= p2[j];
+  }
+}
+
 /* out = the sums over all ranks (collective). */
 PetscErrorCode BoltExactSumEnd(BoltExactSum *s, MPI_Comm comm, PetscReal out[])
 {

@@ -485,6 +485,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         loaded->openingScale = rom->openingScale;
         loaded->nOpenKrylov  = rom->nOpenKrylov;
         loaded->bandScale    = BoltROMDefaultBand(o, contact, loaded);
+        loaded->updateRank   = o->updateRank;
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
         PetscCall(PetscFree(rom));
@@ -546,7 +547,8 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     }
     PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
   }
-  rom->bandScale = BoltROMDefaultBand(o, contact, rom);
+  rom->bandScale  = BoltROMDefaultBand(o, contact, rom);
+  rom->updateRank = o->updateRank;
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;
@@ -617,6 +619,8 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
+  PetscCall(BoltROMUpdateDestroy(&rom->update));
+  PetscCall(PetscFree4(rom->fAcc, rom->fOwn, rom->fNew, rom->fParts));
   PetscCall(PetscFree(*romp));
   PetscFunctionReturn(0);
 }

@@ -56,6 +56,8 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCall(PetscOptionsReal("-rom_opening_shapes", "With -rom_preload_state or -rom_static_shapes: the node pairs whose contact state this multiple of the scene's load changes statically get opening shapes (the preloaded joint's static response to a unit force pair on each, 3 per pair); 0: none (default 2 under the strict law, 0 under the stick law)", NULL, o->openingScale, &o->openingScale, &o->openingScaleSet));
   o->nOpenKrylov = 3;
   PetscCall(PetscOptionsInt("-rom_opening_krylov", "With opening shapes: Krylov vectors of the joint as that load opens it (its active set kept), like -rom_closed_krylov for the preloaded joint", NULL, o->nOpenKrylov, &o->nOpenKrylov, NULL));
+  o->updateRank = -1;
+  PetscCall(PetscOptionsInt("-rom_update_rank", "Online: the largest rank of a low-rank (Woodbury) update of the ROM's factorisation after a change of its active set, beyond which it refactorises; 0: refactorise at every change (default: 3/5 of the ROM's dimension under the strict law, 0 under the stick law)", NULL, o->updateRank, &o->updateRank, NULL));
   o->bandScale = 0;
   PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (a wider band helps on fine meshes and where the load opens the joint, and costs accuracy in paper-step: docs/results.md; default 1, or 2e5 for an interface-reduced ROM under the strict law without opening shapes: its own band is its solver tolerance)", NULL, o->bandScale, &o->bandScale, NULL));
   PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, red->view, &red->view, NULL));
@@ -64,6 +66,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCheck(o->staticPenaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_static_penalty_scale must be > 0 (got %g)", (double)o->staticPenaltyScale);
   PetscCheck(o->openingScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_opening_shapes must be >= 0 (got %g)", (double)o->openingScale);
   PetscCheck(o->nOpenKrylov >= 0 && o->nOpenKrylov <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_opening_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nOpenKrylov);
+  PetscCheck(o->updateRank >= -1, comm, PETSC_ERR_USER_INPUT, "-rom_update_rank must be >= 0 (got %" PetscInt_FMT ")", o->updateRank);
   PetscCheck(o->bandScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_band_scale must be > 0 (got %g)", (double)o->bandScale);
   PetscCheck(o->nClosed >= 0 && o->nClosed <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_closed_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nClosed);
   PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");

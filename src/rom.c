@@ -46,6 +46,72 @@ static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
   PetscFunctionReturn(0);
 }
 
+/* g = D_e' f (n values), the element's term of F_r, in a fixed order. */
+static void ROMElementForceTerm(const BoltROM *rom, PetscInt e, const PetscReal f[12], PetscReal g[])
+{
+  const PetscReal *D = &rom->De[12 * rom->n * e];
+  for (PetscInt j = 0; j < rom->n; j++) {
+    PetscReal v = 0;
+    for (PetscInt k = 0; k < 12; k++) v += D[k + 12 * j] * f[k];
+    g[j] = v;
+  }
+}
+
+/* F_r of the state's own multipliers, where the ROM takes low-rank updates (the strict law):
+   after a change of the active set only the elements whose forces changed are summed again.
+   Each rank keeps its partial exact sum on a grid that stays while the terms fit it, and each
+   element's term as it was split onto the grid; a changed element's old parts are taken out
+   (exactly) and its new term added. The partial sums then hold exactly the parts of the current
+   terms, so F_r has the bits of a sum made afresh on that grid, on any number of ranks. */
+static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal lambda[], Vec F)
+{
+  BoltROM        *rom = (BoltROM *)op->ctx;
+  BoltContactSet *c   = rom->contact;
+  const PetscInt  n   = rom->n;
+  PetscReal       bound = 0, *g = rom->work, *fnew = rom->fNew;
+  PetscBool       fresh;
+  PetscScalar    *y;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    PetscReal *f = &fnew[12 * e], sum = 0;
+    BoltContactElementForces(c, e, lambda, f);
+    for (PetscInt k = 0; k < 12; k++) sum += PetscAbsReal(f[k]);
+    bound = PetscMax(bound, rom->DeMax[e] * sum);
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
+  /* a new grid where a term outgrows it or the terms shrank so far that it is too coarse */
+  if (!rom->fGridValid || bound > rom->fGridBound || bound < ldexp(rom->fGridBound, -20)) {
+    rom->fGridBound  = bound;
+    rom->fGridValid  = PETSC_TRUE;
+    rom->fPartsValid = PETSC_FALSE;
+  }
+  fresh = (PetscBool)!rom->fPartsValid;
+  PetscCall(BoltExactSumBegin(&rom->sum, n, rom->fGridBound, c->ngpGlobal / 4));
+  if (!fresh) PetscCall(PetscArraycpy(rom->sum.acc, rom->fAcc, 2 * n));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscReal *f = &fnew[12 * e], *fold = &rom->fOwn[12 * e];
+    PetscReal       *p = &rom->fParts[2 * n * e];
+    PetscBool        changed = fresh;
+    if (rom->DeMax[e] == 0) continue;
+    for (PetscInt k = 0; k < 12 && !changed; k++) changed = (PetscBool)(f[k] != fold[k]);
+    if (!changed) continue;
+    if (!fresh) BoltExactSumRemove(&rom->sum, p, p + n);
+    ROMElementForceTerm(rom, e, f, g);
+    BoltExactSumAddParts(&rom->sum, g, p, p + n);
+  }
+  PetscCall(PetscArraycpy(rom->fAcc, rom->sum.acc, 2 * n));
+  PetscCall(PetscArraycpy(rom->fOwn, fnew, 12 * c->nelem));
+  rom->fPartsValid = PETSC_TRUE;
+  PetscCall(VecGetArray(F, &y));
+  PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
+  PetscCall(PetscArraycpy(rom->Fr, y, n));
+  PetscCall(VecRestoreArray(F, &y));
+  rom->FrVersion = op->state->version;
+  rom->FrValid   = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* F_r = sum_e D_e' f_e over the contact elements of all ranks, f_e the side-b nodal forces of
    the element's Gauss-point tractions (side a takes -f_e). Per element the work does not depend
    on the partition, and the sum over elements is exact on fixed grids (BoltExactSum), so F_r
@@ -67,6 +133,10 @@ static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[
     PetscCall(VecGetArray(F, &y));
     PetscCall(PetscArraycpy(y, rom->Fr, n));
     PetscCall(VecRestoreArray(F, &y));
+    PetscFunctionReturn(0);
+  }
+  if (own && rom->update) {
+    PetscCall(ROMContactForcesChanged(op, lambda, F));
     PetscFunctionReturn(0);
   }
   for (PetscInt e = 0; e < c->nelem; e++) {
@@ -130,6 +200,7 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
         size += PetscAbsReal(d[12 * a + b]);
       }
     s->dirty[e] = PETSC_FALSE;
+    BoltROMUpdateSummed(rom->update, rom, e);
     bound       = PetscMax(bound, PetscSqr(rom->DeMax[e]) * size);
     dirty[ndirty++] = e;
   }
@@ -210,22 +281,29 @@ static PetscErrorCode ROMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt n
    the path, so a checkpoint keeps it as it is rather than rebuilding it. */
 static PetscErrorCode ROMStateSave(BoltOperator *op, PetscViewer v)
 {
+  BoltROM           *rom = (BoltROM *)op->ctx;
   Mat                Kc;
   const PetscScalar *a;
   PetscInt           nr;
 
   PetscFunctionBeginUser;
+  PetscCall(BoltROMUpdateSettle(op)); /* K_cr of the current state, factorised */
   PetscCall(ROMContactStiffness(op, &Kc));
   PetscCall(MatGetSize(Kc, &nr, NULL));
   PetscCall(MatDenseGetArrayRead(Kc, &a));
   PetscCall(BoltHDF5WriteValues(v, op->comm, "reduced_contact_stiffness", nr * nr, 1, a, PETSC_TRUE));
   PetscCall(MatDenseRestoreArrayRead(Kc, &a));
+  if (rom->update) { /* the grid of the reduced forces' sums: the continued run sums on it too */
+    const PetscScalar grid[2] = {rom->fGridBound, rom->fGridValid ? 1.0 : 0.0};
+    PetscCall(BoltHDF5WriteValues(v, op->comm, "reduced_forces_grid", 2, 1, grid, PETSC_TRUE));
+  }
   PetscFunctionReturn(0);
 }
 
 /* After the contact state was restored: K_cr brought up to date, then replaced by the saved sum. */
 static PetscErrorCode ROMStateLoad(BoltOperator *op, PetscViewer v)
 {
+  BoltROM     *rom = (BoltROM *)op->ctx;
   Mat          Kc;
   PetscScalar *a;
   PetscReal   *x;
@@ -242,6 +320,14 @@ static PetscErrorCode ROMStateLoad(BoltOperator *op, PetscViewer v)
   PetscCall(MatAssemblyBegin(Kc, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Kc, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscFree(x));
+  if (rom->update) {
+    PetscCall(BoltReadAll(v, op->comm, "reduced_forces_grid", &n, &x));
+    PetscCheck(n == 2, op->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint is damaged (reduced forces' grid of %" PetscInt_FMT " values)", n);
+    rom->fGridBound  = x[0];
+    rom->fGridValid  = (PetscBool)(x[1] != 0);
+    rom->fPartsValid = PETSC_FALSE;
+    PetscCall(PetscFree(x));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -251,6 +337,7 @@ static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
 
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced dimension %" PetscInt_FMT ", penalties %g x the FOM's, opening band %g x\n", rom->n, (double)rom->penaltyScale, (double)rom->bandScale));
+  PetscCall(BoltROMUpdateView(rom->update, viewer));
   PetscFunctionReturn(0);
 }
 
@@ -491,6 +578,13 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(ROMSetUpGapRows(rom));
   op->ops.contactGaps  = ROMContactGaps;
   op->ops.openTraction = ROMOpenTraction;
+  /* low-rank updates of the factorisation: by default where the active set is expected to move
+     (the strict law's penalty ROM); the stick law's keeps refactorising, as in the paper */
+  rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (rom->contact->law.strict && !rom->augment ? (3 * n) / 5 : 0);
+  PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
+  PetscCall(PetscFree4(rom->fAcc, rom->fOwn, rom->fNew, rom->fParts));
+  if (rom->update) PetscCall(PetscMalloc4(2 * n + 1, &rom->fAcc, 12 * rom->contact->nelem + 1, &rom->fOwn, 12 * rom->contact->nelem + 1, &rom->fNew, 2 * n * rom->contact->nelem + 1, &rom->fParts));
+  rom->fGridValid = rom->fPartsValid = PETSC_FALSE;
   *opp = op;
   PetscFunctionReturn(0);
 }

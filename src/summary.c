@@ -15,6 +15,7 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
   PetscCall(BoltJSONReal(j, "displacements_s", nm->dual->tDisplacements));
   PetscCall(BoltJSONReal(j, "contact_forces_s", nm->dual->tContactForces));
   PetscCall(BoltJSONInt(j, "factorizations", nm->dual->factorizations));
+  PetscCall(BoltJSONInt(j, "low_rank_updates", nm->dual->updates));
   PetscCall(BoltJSONInt(j, "solves", nm->dual->solves));
   PetscCall(BoltJSONInt(j, "outer_total", nm->dual->outerTotal));
   PetscCall(BoltJSONInt(j, "inner_total", nm->dual->innerTotal));
@@ -185,6 +186,7 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
   PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
   PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));
+  PetscCall(BoltJSONInt(j, "update_rank", rom->updateRankUsed));
   PetscCall(SummaryNewmarkRun(j, s->romRun, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));
   if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(j, "orthogonality", rom->orthogonality));

@@ -1,0 +1,495 @@
+/* Low-rank updates of the ROM's factorised effective matrix. Where the joint opens, the reduced
+   active set changes once or more per step; each change made the ROM sum the changed elements
+   into K_cr (an exact sum of n^2/2 terms per element) and factorise A = a1 M + a4 C + K + K_cr
+   afresh. Instead, a few factorised references A_ref (states met before) are kept, and a solve
+   takes the difference from the nearest one as a Woodbury correction:
+
+     A = A_ref + U S U',   x = y - Z w,   (I + S G) w = S U' y,   y = A_ref^-1 b,
+
+   U holding the rows of D = V_b - V_a of the node pairs whose penalty block differs from the
+   reference's (three columns per node of a contact element: a "slot"), S the differences of
+   those blocks, Z = A_ref^-1 U and G = U' Z. Each reference keeps Z and G of every slot that
+   has differed from it (its pool), so a change of the set costs the solves of the slots new to
+   the pool and the factorisation of I + S G, of size 3k for k differing slots. Where every
+   reference differs by more than -rom_update_rank columns (or its pool is full, or I + S G is
+   singular), the current state is factorised and becomes a reference, replacing the one unused
+   longest. The joint opens and closes through the same states period after period, so a few
+   references carry a whole run.
+
+   Every rank holds the references and the correction, built from the slots' records gathered
+   and put in the order of their names (element key and node): the ROM's history has the same
+   bits on any partition. Inner products are written out in index order for the same reason. */
+#include "boltrom.h"
+#include <petscblaslapack.h>
+
+#define ROM_REFERENCES 4 /* kept factorisations: 4 to 16 did about as well (docs/results.md) */
+
+typedef struct {
+  PetscBool  valid;
+  PetscInt   lastUsed;
+  PetscBool  dynamic; /* the Newmark coefficients it was made with */
+  PetscReal  massCoef, dampingCoef;
+  Mat        A;
+  KSP        ksp;
+  PetscReal *Ke;       /* 144 per local element: its penalty blocks */
+  PetscBool *dev;      /* per local element: the current block differs from it */
+  PetscInt  *slotOf;   /* 4 per local element: the node's slot in its pool, -1 if none */
+  PetscInt   nslot;    /* its pool, the same on every rank */
+  PetscReal *U, *Z, *G; /* n x 3 per slot, n x 3 per slot, 3 alloc x 3 alloc (column-major) */
+} ROMReference;
+
+struct BoltROMUpdate_s {
+  PetscInt     maxRank, alloc; /* the largest correction [columns]; slots per pool */
+  ROMReference ref[ROM_REFERENCES];
+  PetscInt     cur, clock;     /* the reference in force (-1: none), and a use counter */
+  BoltDual    *dual;           /* the loop whose solves these are */
+  PetscReal   *Kcur;           /* 144 per local element: the current penalty blocks */
+  PetscBool   *devRun;         /* per local element: the current block differs from the one in K_cr */
+  /* the correction in force: k slots, in the order of their names */
+  PetscInt      k;
+  PetscInt     *act, *first, *last, *node; /* per active slot: pool slot, its element's first and last active slot, its node */
+  PetscReal    *S;               /* 36 per active slot: its rows of the element's difference (3 x 12, row-major) */
+  PetscReal    *Ua, *Za, *C, *t, *w;
+  PetscBLASInt *piv;
+  /* gathering */
+  PetscReal   *send, *recv;
+  PetscInt     sendAlloc, recvAlloc, recAlloc;
+  PetscMPIInt *counts, *displs;
+  PetscInt    *name, *perm;      /* per gathered record: its name, and where it starts */
+  Vec          vb, vx;
+  PetscInt     updates, references;
+};
+
+static PetscErrorCode ROMUpdateGrow(PetscReal **a, PetscInt *alloc, PetscInt need)
+{
+  PetscFunctionBeginUser;
+  if (need <= *alloc) PetscFunctionReturn(0);
+  PetscCall(PetscFree(*a));
+  *alloc = PetscMax(need, 2 * *alloc);
+  PetscCall(PetscMalloc1(*alloc, a));
+  PetscFunctionReturn(0);
+}
+
+/* Whether slot a of a 12 x 12 difference is non-zero (its rows or its columns). */
+static PetscBool ROMSlotDiffers(const PetscReal *cur, const PetscReal *ref, PetscInt a)
+{
+  for (PetscInt r = 3 * a; r < 3 * a + 3; r++)
+    for (PetscInt b = 0; b < 12; b++)
+      if (cur[12 * r + b] != ref[12 * r + b] || cur[12 * b + r] != ref[12 * b + r]) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+static PetscBool ROMBlockDiffers(const PetscReal *cur, const PetscReal *ref)
+{
+  for (PetscInt i = 0; i < 144; i++)
+    if (cur[i] != ref[i]) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* The current state factorised as reference r: K_cr brought to it (the exact sums of
+   ROMContactStiffness over the elements that differ from the state in K_cr), A formed as the
+   dual loop forms K_eff, and factorised. */
+static PetscErrorCode ROMReferenceMake(BoltROM *rom, BoltOperator *op, BoltDual *d, PetscInt r)
+{
+  BoltROMUpdate  *u   = rom->update;
+  ROMReference   *ref = &u->ref[r];
+  const PetscInt  ne  = rom->contact->nelem;
+  Mat             Kc;
+  PetscLogDouble  t0, t1, t2;
+  PC              pc;
+  PCFailedReason  reason;
+
+  PetscFunctionBeginUser;
+  if (!ref->Ke) { /* made when first needed: a scene whose set holds uses one */
+    PetscCall(PetscMalloc3(144 * ne + 1, &ref->Ke, ne + 1, &ref->dev, 4 * ne + 1, &ref->slotOf));
+    PetscCall(PetscMalloc3(3 * rom->n * u->alloc, &ref->U, 3 * rom->n * u->alloc, &ref->Z, 9 * u->alloc * u->alloc, &ref->G));
+  }
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
+  for (PetscInt e = 0; e < ne; e++) {
+    if (u->devRun[e]) op->state->dirty[e] = PETSC_TRUE;
+    u->devRun[e] = PETSC_FALSE;
+  }
+  rom->KcrValid = PETSC_FALSE; /* its version may have been taken while the flags were held here */
+  PetscCall(op->ops.contactStiffness(op, &Kc));
+  if (!ref->A) PetscCall(MatDuplicate(op->K, MAT_DO_NOT_COPY_VALUES, &ref->A));
+  PetscCall(MatCopy(op->K, ref->A, SAME_NONZERO_PATTERN));
+  if (d->dynamic) {
+    PetscCall(MatAXPY(ref->A, d->massCoef, op->M, SAME_NONZERO_PATTERN));
+    PetscCall(MatAXPY(ref->A, d->dampingCoef, op->C, SAME_NONZERO_PATTERN));
+  }
+  PetscCall(MatAXPY(ref->A, 1.0, Kc, SAME_NONZERO_PATTERN));
+  PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscLogEventBegin(boltLog.factorization, 0, 0, 0, 0));
+  if (!ref->ksp) PetscCall(BoltDirectSolverCreate(PETSC_COMM_SELF, op->prefix, NULL, PETSC_FALSE, op->solverType, &ref->ksp));
+  PetscCall(KSPSetOperators(ref->ksp, ref->A, ref->A));
+  PetscCall(KSPSetUp(ref->ksp));
+  PetscCall(PetscLogEventEnd(boltLog.factorization, 0, 0, 0, 0));
+  PetscCall(KSPGetPC(ref->ksp, &pc));
+  PetscCall(PCGetFailedReason(pc, &reason));
+  PetscCheck(reason == PC_NOERROR, op->comm, PETSC_ERR_NOT_CONVERGED, "%s: factorisation of the effective stiffness failed (%s) at step %" PetscInt_FMT ", t = %g s: the system is singular (a part held by contact alone lost all contact?)", op->name, PCFailedReasons[reason], d->step, (double)d->time);
+  PetscCall(PetscTime(&t2));
+  d->tContactStiffness += t1 - t0;
+  d->tDisplacements += t2 - t1;
+  d->factorizations++;
+  PetscCall(PetscArraycpy(ref->Ke, u->Kcur, 144 * ne));
+  for (PetscInt e = 0; e < ne; e++) ref->dev[e] = PETSC_FALSE;
+  for (PetscInt i = 0; i < 4 * ne; i++) ref->slotOf[i] = -1;
+  ref->nslot       = 0;
+  ref->valid       = PETSC_TRUE;
+  ref->dynamic     = d->dynamic;
+  ref->massCoef    = d->massCoef;
+  ref->dampingCoef = d->dampingCoef;
+  ref->lastUsed    = u->clock++;
+  u->cur           = r;
+  u->k             = 0;
+  u->references++;
+  PetscFunctionReturn(0);
+}
+
+/* A new reference in place of the one unused longest (or of a free one). */
+static PetscErrorCode ROMReferenceNew(BoltROM *rom, BoltOperator *op, BoltDual *d)
+{
+  BoltROMUpdate *u = rom->update;
+  PetscInt       r = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < ROM_REFERENCES; i++) {
+    if (!u->ref[i].valid) {
+      r = i;
+      break;
+    }
+    if (u->ref[i].lastUsed < u->ref[r].lastUsed) r = i;
+  }
+  PetscCall(ROMReferenceMake(rom, op, d, r));
+  PetscFunctionReturn(0);
+}
+
+/* The correction of reference r for the current state, if it fits: the slots' records gathered
+   in the order of their names, new slots added to its pool, I + S G factorised. */
+static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *done)
+{
+  BoltROMUpdate  *u   = rom->update;
+  ROMReference   *ref = &u->ref[r];
+  BoltContactSet *c   = rom->contact;
+  const PetscInt  n = rom->n, recLen = 2 + 36, LD = 3 * u->alloc;
+  PetscInt        nsend = 0, nrec = 0, total = 0, nnew = 0, m;
+  PetscMPIInt     size, rank, len;
+
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  /* a record per differing slot: name, pool slot (-1: new), its three rows of the difference,
+     and if new its columns of U */
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt a = 0; a < 4 && ref->dev[e]; a++)
+      if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) nsend += recLen + (ref->slotOf[4 * e + a] < 0 ? 3 * n : 0);
+  PetscCall(ROMUpdateGrow(&u->send, &u->sendAlloc, nsend + 1));
+  nsend = 0;
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
+      const PetscReal *cur = &u->Kcur[144 * e], *ke = &ref->Ke[144 * e], *D = &rom->De[12 * n * e];
+      PetscReal       *r0  = &u->send[nsend];
+      if (!ROMSlotDiffers(cur, ke, a)) continue;
+      r0[0] = (PetscReal)(4 * c->elem[e].key + a);
+      r0[1] = (PetscReal)ref->slotOf[4 * e + a];
+      for (PetscInt q = 0; q < 3; q++)
+        for (PetscInt b = 0; b < 12; b++) r0[2 + 12 * q + b] = cur[12 * (3 * a + q) + b] - ke[12 * (3 * a + q) + b];
+      nsend += recLen;
+      if (ref->slotOf[4 * e + a] < 0) {
+        for (PetscInt q = 0; q < 3; q++)
+          for (PetscInt j = 0; j < n; j++) u->send[nsend + n * q + j] = D[3 * a + q + 12 * j];
+        nsend += 3 * n;
+      }
+    }
+  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(rom->comm, &rank));
+  PetscCall(PetscMPIIntCast(nsend, &len));
+  PetscCallMPI(MPI_Allgather(&len, 1, MPI_INT, u->counts, 1, MPI_INT, rom->comm));
+  for (PetscMPIInt p = 0; p < size; p++) {
+    PetscCall(PetscMPIIntCast(total, &u->displs[p]));
+    total += u->counts[p];
+  }
+  PetscCall(ROMUpdateGrow(&u->recv, &u->recvAlloc, total + 1));
+  PetscCallMPI(MPI_Allgatherv(u->send, len, MPIU_REAL, u->recv, u->counts, u->displs, MPIU_REAL, rom->comm));
+  for (PetscInt pos = 0; pos < total; nrec++) pos += recLen + (u->recv[pos + 1] < 0 ? 3 * n : 0);
+  if (nrec > u->recAlloc) {
+    u->recAlloc = PetscMax(nrec, 2 * u->recAlloc);
+    PetscCall(PetscFree2(u->name, u->perm));
+    PetscCall(PetscMalloc2(u->recAlloc, &u->name, u->recAlloc, &u->perm));
+  }
+  for (PetscInt pos = 0, i = 0; pos < total; i++) {
+    u->name[i] = (PetscInt)u->recv[pos];
+    u->perm[i] = pos;
+    if (u->recv[pos + 1] < 0) nnew++;
+    pos += recLen + (u->recv[pos + 1] < 0 ? 3 * n : 0);
+  }
+  PetscCall(PetscSortIntWithArray(nrec, u->name, u->perm)); /* names in order, perm: where their records are */
+  if (3 * nrec > u->maxRank || ref->nslot + nnew > u->alloc) PetscFunctionReturn(0);
+  /* new slots join the pool, side by side after the others: Z = A_ref^-1 U in one solve with
+     many right-hand sides, and G's new columns U' Z_new (and rows, by symmetry) */
+  if (nnew) {
+    const PetscInt first = ref->nslot, mo = 3 * first, mn = 3 * nnew;
+    Mat            B, X;
+    PetscBLASInt   bn, bmo, bmn, bld;
+    PetscReal      one = 1, zero = 0;
+    for (PetscInt i = 0; i < nrec; i++) {
+      PetscReal *r0 = &u->recv[u->perm[i]];
+      if (r0[1] >= 0) continue;
+      PetscCall(PetscArraycpy(&ref->U[3 * n * ref->nslot], r0 + recLen, 3 * n));
+      r0[1] = (PetscReal)ref->nslot++;
+    }
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, mn, &ref->U[3 * n * first], &B));
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, mn, &ref->Z[3 * n * first], &X));
+    PetscCall(KSPMatSolve(ref->ksp, B, X));
+    PetscCall(MatDestroy(&B));
+    PetscCall(MatDestroy(&X));
+    PetscCall(PetscBLASIntCast(n, &bn));
+    PetscCall(PetscBLASIntCast(mo + mn, &bmo));
+    PetscCall(PetscBLASIntCast(mn, &bmn));
+    PetscCall(PetscBLASIntCast(LD, &bld));
+    PetscCallBLAS("BLASgemm", BLASgemm_("T", "N", &bmo, &bmn, &bn, &one, ref->U, &bn, &ref->Z[3 * n * first], &bn, &zero, &ref->G[LD * mo], &bld));
+    for (PetscInt j = mo; j < mo + mn; j++) /* the new rows: the old columns' part, transposed */
+      for (PetscInt i = 0; i < mo; i++) ref->G[j + LD * i] = ref->G[i + LD * j];
+  }
+  /* the owners note their new slots' places (their records, in the order they were sent) */
+  for (PetscInt e = 0, pos = u->displs[rank]; e < c->nelem; e++)
+    for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
+      if (!ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) continue;
+      if (ref->slotOf[4 * e + a] < 0) {
+        ref->slotOf[4 * e + a] = (PetscInt)u->recv[pos + 1];
+        pos += 3 * n;
+      }
+      pos += recLen;
+    }
+  /* the correction: its slots, S, U and Z side by side, and I + S G factorised */
+  m = 3 * nrec;
+  for (PetscInt i = 0; i < nrec; i++) {
+    const PetscReal *r0 = &u->recv[u->perm[i]];
+    u->act[i]           = (PetscInt)r0[1];
+    u->node[i]          = u->name[i] % 4;
+    PetscCall(PetscArraycpy(&u->S[36 * i], r0 + 2, 36));
+    u->first[i] = (i > 0 && u->name[i - 1] / 4 == u->name[i] / 4) ? u->first[i - 1] : i;
+  }
+  for (PetscInt i = nrec - 1; i >= 0; i--) u->last[i] = (i < nrec - 1 && u->name[i + 1] / 4 == u->name[i] / 4) ? u->last[i + 1] : i;
+  for (PetscInt i = 0; i < nrec; i++) {
+    PetscCall(PetscArraycpy(&u->Ua[3 * n * i], &ref->U[3 * n * u->act[i]], 3 * n));
+    PetscCall(PetscArraycpy(&u->Za[3 * n * i], &ref->Z[3 * n * u->act[i]], 3 * n));
+  }
+  for (PetscInt j = 0; j < nrec; j++)
+    for (PetscInt q = 0; q < 3; q++)
+      for (PetscInt i = 0; i < nrec; i++)
+        for (PetscInt p = 0; p < 3; p++) {
+          PetscReal v = (i == j && p == q) ? 1.0 : 0.0;
+          for (PetscInt l = u->first[i]; l <= u->last[i]; l++)
+            for (PetscInt s = 0; s < 3; s++) v += u->S[36 * i + 12 * p + 3 * u->node[l] + s] * ref->G[3 * u->act[l] + s + LD * (3 * u->act[j] + q)];
+          u->C[3 * i + p + m * (3 * j + q)] = v;
+        }
+  if (m > 0) {
+    PetscBLASInt bm, info;
+    PetscCall(PetscBLASIntCast(m, &bm));
+    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bm, &bm, u->C, &bm, u->piv, &info));
+    if (info != 0) PetscFunctionReturn(0); /* singular: this reference cannot carry the state */
+  }
+  u->k          = nrec;
+  u->cur        = r;
+  ref->lastUsed = u->clock++;
+  *done         = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The dual loop's factorisation, for the ROM: a correction of the nearest reference if one fits,
+   else a new reference. */
+static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
+{
+  BoltROM          *rom = (BoltROM *)op->ctx;
+  BoltROMUpdate    *u   = rom->update;
+  BoltContactSet   *c   = rom->contact;
+  BoltContactState *s   = op->state;
+  PetscInt          slots[ROM_REFERENCES], order[ROM_REFERENCES], nvalid = 0;
+  PetscReal         Knew[576];
+  PetscLogDouble    t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
+  u->dual = d;
+  /* references made under other Newmark coefficients (the static preload, another step) go */
+  for (PetscInt r = 0; r < ROM_REFERENCES; r++) {
+    ROMReference *ref = &u->ref[r];
+    if (ref->valid && !(ref->dynamic == d->dynamic && ref->massCoef == d->massCoef && ref->dampingCoef == d->dampingCoef)) ref->valid = PETSC_FALSE;
+  }
+  /* the changed elements' blocks, and whom they differ from */
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    PetscReal *cur = &u->Kcur[144 * e];
+    if (!s->dirty[e]) continue;
+    s->dirty[e] = PETSC_FALSE;
+    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], &s->released[4 * e], Knew));
+    for (PetscInt a = 0; a < 12; a++)
+      for (PetscInt b = 0; b < 12; b++) cur[12 * a + b] = Knew[24 * a + b];
+    if (rom->DeMax[e] == 0) { /* both sides clamped: nothing of it reaches the ROM */
+      PetscCall(PetscArraycpy(&rom->Ke[144 * e], cur, 144));
+      for (PetscInt r = 0; r < ROM_REFERENCES; r++)
+        if (u->ref[r].valid) PetscCall(PetscArraycpy(&u->ref[r].Ke[144 * e], cur, 144));
+      continue;
+    }
+    u->devRun[e] = ROMBlockDiffers(cur, &rom->Ke[144 * e]);
+    for (PetscInt r = 0; r < ROM_REFERENCES; r++)
+      if (u->ref[r].valid) u->ref[r].dev[e] = ROMBlockDiffers(cur, &u->ref[r].Ke[144 * e]);
+  }
+  /* the references by the number of slots they differ in (over all ranks) */
+  for (PetscInt r = 0; r < ROM_REFERENCES; r++) {
+    ROMReference *ref = &u->ref[r];
+    slots[r]          = 0;
+    if (!ref->valid) continue;
+    for (PetscInt e = 0; e < c->nelem; e++)
+      for (PetscInt a = 0; a < 4 && ref->dev[e]; a++)
+        if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) slots[r]++;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, slots, ROM_REFERENCES, MPIU_INT, MPI_SUM, rom->comm));
+  for (PetscInt r = 0; r < ROM_REFERENCES; r++)
+    if (u->ref[r].valid && 3 * slots[r] <= u->maxRank) order[nvalid++] = r;
+  for (PetscInt i = 1; i < nvalid; i++) /* nearest first; ties: the one used last */
+    for (PetscInt j = i; j > 0; j--) {
+      const PetscInt a = order[j - 1], b = order[j];
+      if (slots[b] < slots[a] || (slots[b] == slots[a] && u->ref[b].lastUsed > u->ref[a].lastUsed)) {
+        order[j - 1] = b;
+        order[j]     = a;
+      }
+    }
+  for (PetscInt i = 0; i < nvalid; i++) {
+    PetscBool done;
+    PetscCall(ROMReferenceCorrect(rom, order[i], &done));
+    if (done) {
+      PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
+      PetscCall(PetscTime(&t1));
+      d->tContactStiffness += t1 - t0;
+      d->updates++;
+      u->updates++;
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t1));
+  d->tContactStiffness += t1 - t0;
+  PetscCall(ROMReferenceNew(rom, op, d));
+  PetscFunctionReturn(0);
+}
+
+/* x = A^-1 b: the reference's solve, corrected. */
+static PetscErrorCode ROMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x)
+{
+  BoltROM       *rom = (BoltROM *)op->ctx;
+  BoltROMUpdate *u   = rom->update;
+  const PetscInt n = rom->n, k = u->k, m = 3 * k;
+  PetscScalar   *xa;
+  PetscBLASInt   bn, bm, one = 1, info;
+  PetscReal      pone = 1, zero = 0, mone = -1;
+
+  PetscFunctionBeginUser;
+  PetscCheck(u->cur >= 0 && u->ref[u->cur].valid, PETSC_COMM_SELF, PETSC_ERR_PLIB, "ROM: a solve before a factorisation");
+  PetscCall(KSPSolve(u->ref[u->cur].ksp, b, x));
+  if (!k) PetscFunctionReturn(0);
+  PetscCall(PetscBLASIntCast(n, &bn));
+  PetscCall(PetscBLASIntCast(m, &bm));
+  PetscCall(VecGetArray(x, &xa));
+  PetscCallBLAS("BLASgemv", BLASgemv_("T", &bn, &bm, &pone, u->Ua, &bn, xa, &one, &zero, u->t, &one));
+  for (PetscInt i = 0; i < k; i++)
+    for (PetscInt p = 0; p < 3; p++) {
+      PetscReal v = 0;
+      for (PetscInt l = u->first[i]; l <= u->last[i]; l++)
+        for (PetscInt s = 0; s < 3; s++) v += u->S[36 * i + 12 * p + 3 * u->node[l] + s] * u->t[3 * l + s];
+      u->w[3 * i + p] = v;
+    }
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bm, &one, u->C, &bm, u->piv, u->w, &bm, &info));
+  PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bm, &mone, u->Za, &bn, u->w, &one, &pone, xa, &one));
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscFunctionReturn(0);
+}
+
+/* Before a checkpoint: the references go and the current state is factorised as the only one,
+   as a run continued from the checkpoint (which factorises what it restores) will have it. */
+PetscErrorCode BoltROMUpdateSettle(BoltOperator *op)
+{
+  BoltROM       *rom = (BoltROM *)op->ctx;
+  BoltROMUpdate *u   = rom->update;
+
+  PetscFunctionBeginUser;
+  if (!u || u->cur < 0) PetscFunctionReturn(0);
+  for (PetscInt r = 0; r < ROM_REFERENCES; r++) u->ref[r].valid = PETSC_FALSE;
+  PetscCall(ROMReferenceMake(rom, op, u->dual, 0));
+  PetscFunctionReturn(0);
+}
+
+/* ROMContactStiffness summed element e's current block into K_cr (rom->Ke). */
+void BoltROMUpdateSummed(BoltROMUpdate *u, BoltROM *rom, PetscInt e)
+{
+  if (!u) return;
+  for (PetscInt i = 0; i < 144; i++) u->Kcur[144 * e + i] = rom->Ke[144 * e + i];
+  u->devRun[e] = PETSC_FALSE;
+  for (PetscInt r = 0; r < ROM_REFERENCES; r++)
+    if (u->ref[r].valid) u->ref[r].dev[e] = ROMBlockDiffers(&u->Kcur[144 * e], &u->ref[r].Ke[144 * e]);
+}
+
+/* The ROM's operator takes its factorisations and solves from here when maxRank > 0. */
+PetscErrorCode BoltROMUpdateCreate(BoltROM *rom, BoltOperator *op, PetscInt maxRank)
+{
+  BoltROMUpdate *u;
+  const PetscInt n = rom->n, ne = rom->contact->nelem;
+  PetscMPIInt    size;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltROMUpdateDestroy(&rom->update));
+  if (maxRank <= 0) PetscFunctionReturn(0);
+  PetscCall(PetscNew(&u));
+  u->maxRank = maxRank;
+  u->alloc   = PetscMax(1, (3 * n) / 5); /* slots per pool: beyond some 2n columns a new reference is cheaper */ /* beyond n columns in a pool, a new reference is cheaper */
+  u->cur     = -1;
+  PetscCall(PetscMalloc2(144 * ne + 1, &u->Kcur, ne + 1, &u->devRun));
+  PetscCall(PetscArraycpy(u->Kcur, rom->Ke, 144 * ne)); /* K_cr is built: its blocks are the current ones */
+  for (PetscInt e = 0; e < ne; e++) u->devRun[e] = PETSC_FALSE;
+  PetscCall(PetscMalloc5(u->alloc, &u->act, u->alloc, &u->first, u->alloc, &u->last, u->alloc, &u->node, 36 * u->alloc, &u->S));
+  PetscCall(PetscMalloc6(3 * n * u->alloc, &u->Ua, 3 * n * u->alloc, &u->Za, 9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w, 3 * u->alloc, &u->piv));
+  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
+  PetscCall(PetscMalloc2(size, &u->counts, size, &u->displs));
+  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, NULL, &u->vb));
+  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, NULL, &u->vx));
+  rom->update    = u;
+  op->ops.factor = ROMUpdateFactor;
+  op->ops.solve  = ROMUpdateSolve;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltROMUpdateView(BoltROMUpdate *u, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  if (!u) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  set changes taken as low-rank updates of up to %d kept factorisations, rank up to %" PetscInt_FMT " (so far %" PetscInt_FMT " updates, %" PetscInt_FMT " factorisations)\n", ROM_REFERENCES, u->maxRank, u->updates, u->references));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **up)
+{
+  BoltROMUpdate *u = *up;
+
+  PetscFunctionBeginUser;
+  if (!u) PetscFunctionReturn(0);
+  for (PetscInt r = 0; r < ROM_REFERENCES; r++) {
+    ROMReference *ref = &u->ref[r];
+    PetscCall(PetscFree3(ref->Ke, ref->dev, ref->slotOf));
+    PetscCall(PetscFree3(ref->U, ref->Z, ref->G));
+    PetscCall(MatDestroy(&ref->A));
+    PetscCall(KSPDestroy(&ref->ksp));
+  }
+  PetscCall(PetscFree2(u->Kcur, u->devRun));
+  PetscCall(PetscFree5(u->act, u->first, u->last, u->node, u->S));
+  PetscCall(PetscFree6(u->Ua, u->Za, u->C, u->t, u->w, u->piv));
+  PetscCall(PetscFree2(u->counts, u->displs));
+  PetscCall(PetscFree(u->send));
+  PetscCall(PetscFree(u->recv));
+  PetscCall(PetscFree2(u->name, u->perm));
+  PetscCall(VecDestroy(&u->vb));
+  PetscCall(VecDestroy(&u->vx));
+  PetscCall(PetscFree(*up));
+  PetscFunctionReturn(0);
+}
