@@ -187,6 +187,7 @@ typedef struct {
   PetscReal      *anchor;         /* 3 per point: tangential position where a re-closed pair sticks (0: since the start) */
   PetscReal      *lambdaForce;    /* 3 per point: lambda - epsT anchor, the multipliers that the solve's forces take */
   PetscBool       anchored;       /* some local point has a non-zero anchor */
+  const PetscBool *hold;          /* per point, or NULL: the point keeps its state (a ROM's points outside its opening shapes) */
   PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
   PetscBool      *dirty;          /* element whose activity or penalty changed since its Ke was built */
   PetscReal      *Ke;             /* 576 per element: stiffness of its active Gauss points (made when first needed) */
@@ -507,6 +508,9 @@ typedef struct {
   PetscReal       openingScale;  /* opening shapes of the pairs this multiple of the load changes (0: none) */
   PetscInt        nOpenKrylov;   /* opened-joint Krylov vectors with them */
   PetscInt        nOpeningPairs; /* node pairs with opening shapes in the basis */
+  PetscBool      *marked;        /* 4 per local contact element: the point's state changed in those static solves (NULL: not made) */
+  PetscBool       holdUnmarked;  /* -rom_hold_unmarked: online, the other points keep their preloaded state */
+  PetscBool      *holdMask;      /* per point: held (the state's hold), or NULL */
   PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
   PetscInt        updateRank;    /* -rom_update_rank as given (-1: the default) */
   PetscInt        updateRankUsed; /* as resolved when the operator was made (0: refactorise) */
@@ -549,6 +553,7 @@ typedef struct {
   PetscReal  openingScale;                  /* -rom_opening_shapes: the load's scale whose changed pairs get shapes, 0 none */
   PetscBool  openingScaleSet;               /* given (else the law's default) */
   PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
+  PetscBool  holdUnmarked;                  /* -rom_hold_unmarked */
   PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;

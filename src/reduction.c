@@ -287,7 +287,8 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
       for (PetscInt k = 0; k < 4 * c->nelem; k++) changed[k] = (PetscBool)(changed[k] || s->active[k] != rom->active0[k]);
     }
     PetscCall(BoltNodePairs(c, changed, &npairs, &pairs));
-    PetscCall(PetscFree(changed));
+    PetscCall(PetscFree(rom->marked));
+    rom->marked = changed; /* kept: online the other points may hold their preloaded state */
     rom->nOpeningPairs = npairs;
     PetscCall(PetscPrintf(rom->comm, "ROM: -/+ %g x the load change %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed under +)\n", (double)openingScale, npairs, s->nactive));
     if (nOpenKrylov > 0 && npairs > 0) { /* the opened joint's low-frequency shapes, its active set kept (none when no pair changes: it is the preloaded joint) */
@@ -486,6 +487,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         loaded->nOpenKrylov  = rom->nOpenKrylov;
         loaded->bandScale    = BoltROMDefaultBand(o, contact, loaded);
         loaded->updateRank   = o->updateRank;
+        loaded->holdUnmarked = o->holdUnmarked;
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
         PetscCall(PetscFree(rom));
@@ -549,6 +551,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   }
   rom->bandScale  = BoltROMDefaultBand(o, contact, rom);
   rom->updateRank = o->updateRank;
+  rom->holdUnmarked = o->holdUnmarked;
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;
@@ -619,6 +622,8 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
+  PetscCall(PetscFree(rom->marked));
+  PetscCall(PetscFree(rom->holdMask));
   PetscCall(BoltROMUpdateDestroy(&rom->update));
   PetscCall(PetscFree4(rom->fAcc, rom->fOwn, rom->fNew, rom->fParts));
   PetscCall(PetscFree(*romp));

@@ -580,6 +580,15 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   op->ops.openTraction = ROMOpenTraction;
   /* low-rank updates of the factorisation: by default where the active set is expected to move
      (the strict law's penalty ROM); the stick law's keeps refactorising, as in the paper */
+  /* with opening shapes, the points the opening solves did not change hold their preloaded state:
+     the basis has no shapes to open them, and freed they chattered at the washers' rims */
+  PetscCall(PetscFree(rom->holdMask));
+  op->state->hold = NULL;
+  if (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0) {
+    PetscCall(PetscMalloc1(4 * rom->contact->nelem + 1, &rom->holdMask));
+    for (PetscInt i = 0; i < 4 * rom->contact->nelem; i++) rom->holdMask[i] = rom->marked[i] ? PETSC_FALSE : PETSC_TRUE;
+    op->state->hold = rom->holdMask;
+  }
   rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (rom->contact->law.strict && !rom->augment ? (3 * n) / 5 : 0);
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
   PetscCall(PetscFree4(rom->fAcc, rom->fOwn, rom->fNew, rom->fParts));

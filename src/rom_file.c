@@ -35,7 +35,7 @@ PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLo
 
   PetscFunctionBeginUser;
   PetscCall(BoltFileHash(m->comm, m->filename, &h));
-  PetscCall(PetscSNPrintf(fp, len, "format 8; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
+  PetscCall(PetscSNPrintf(fp, len, "format 9; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
   for (PetscInt p = 0; p < m->nparts; p++) {
     const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
     PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g %.6g %.6g", m->partName[p], (double)mat->E, (double)mat->nu, (double)mat->rho));
@@ -140,7 +140,7 @@ static PetscErrorCode BoltPointRows(BoltMesh *m, BV V, const char group[], Petsc
 
 /* The preloaded contact state, per contact element keyed by its face a in the mesh as read
    (as in checkpoints): 12 multipliers and 12 gap components per newton of preload, then 4 active
-   flags. */
+   flags (plus 4 where the opening shapes' static solves changed the point). */
 #define BOLT_ROM_STATE 28
 
 static PetscErrorCode BoltROMSavePreloadState(BoltROM *rom, PetscViewer v)
@@ -155,8 +155,8 @@ static PetscErrorCode BoltROMSavePreloadState(BoltROM *rom, PetscViewer v)
   for (PetscInt e = 0; e < c->nelem; e++) {
     for (PetscInt i = 0; i < 12; i++) buf[BOLT_ROM_STATE * e + i] = rom->lambda0[12 * e + i];
     for (PetscInt i = 0; i < 12; i++) buf[BOLT_ROM_STATE * e + 12 + i] = rom->gap0[12 * e + i];
-    /* 1 closed, 2 closed and sliding (strict law), 0 open */
-    for (PetscInt i = 0; i < 4; i++) buf[BOLT_ROM_STATE * e + 24 + i] = rom->active0[4 * e + i] ? (rom->released0[4 * e + i] ? 2.0 : 1.0) : 0.0;
+    /* 1 closed, 2 closed and sliding (strict law), 0 open; plus 4 where the opening shapes' solves changed it */
+    for (PetscInt i = 0; i < 4; i++) buf[BOLT_ROM_STATE * e + 24 + i] = (rom->active0[4 * e + i] ? (rom->released0[4 * e + i] ? 2.0 : 1.0) : 0.0) + (rom->marked && rom->marked[4 * e + i] ? 4.0 : 0.0);
   }
   PetscCall(BoltHDF5WriteValues(v, rom->comm, "state", BOLT_ROM_STATE * c->nelem, 1, buf, PETSC_FALSE));
   PetscCall(PetscFree(buf));
@@ -176,6 +176,8 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
   PetscCall(BoltReadAll(v, rom->comm, "state", &n, &x));
   PetscCheck(n == BOLT_ROM_STATE * ix.n, rom->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged (preloaded state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements): rebuild it with -rom_rebuild", file, n, ix.n);
   PetscCall(PetscMalloc4(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0, 4 * c->nelem + 1, &rom->released0));
+  PetscCall(PetscFree(rom->marked));
+  PetscCall(PetscMalloc1(4 * c->nelem + 1, &rom->marked));
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscInt row;
     PetscCall(BoltKeyIndexFind(&ix, c->elem[e].key, &row));
@@ -183,8 +185,10 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
     for (PetscInt i = 0; i < 12; i++) rom->lambda0[12 * e + i] = x[BOLT_ROM_STATE * row + i];
     for (PetscInt i = 0; i < 12; i++) rom->gap0[12 * e + i] = x[BOLT_ROM_STATE * row + 12 + i];
     for (PetscInt i = 0; i < 4; i++) {
-      rom->active0[4 * e + i]   = x[BOLT_ROM_STATE * row + 24 + i] != 0 ? PETSC_TRUE : PETSC_FALSE;
-      rom->released0[4 * e + i] = x[BOLT_ROM_STATE * row + 24 + i] == 2 ? PETSC_TRUE : PETSC_FALSE;
+      const PetscInt code = (PetscInt)x[BOLT_ROM_STATE * row + 24 + i];
+      rom->active0[4 * e + i]   = code % 4 != 0 ? PETSC_TRUE : PETSC_FALSE;
+      rom->released0[4 * e + i] = code % 4 == 2 ? PETSC_TRUE : PETSC_FALSE;
+      rom->marked[4 * e + i]    = code >= 4 ? PETSC_TRUE : PETSC_FALSE;
     }
   }
   rom->preloadState = PETSC_TRUE;
