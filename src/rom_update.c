@@ -18,7 +18,7 @@
 
    Every rank holds the references and the correction, built from the slots' records gathered
    and put in the order of their names (element key and node): the ROM's history has the same
-   bits on any partition. Inner products are written out in index order for the same reason. */
+   bits on any partition (each rank makes the same BLAS and LAPACK calls on the same data). */
 #include "boltrom.h"
 #include <petscblaslapack.h>
 
@@ -56,7 +56,6 @@ struct BoltROMUpdate_s {
   PetscInt     sendAlloc, recvAlloc, recAlloc;
   PetscMPIInt *counts, *displs;
   PetscInt    *name, *perm;      /* per gathered record: its name, and where it starts */
-  Vec          vb, vx;
   PetscInt     updates, references;
 };
 
@@ -452,8 +451,6 @@ PetscErrorCode BoltROMUpdateCreate(BoltROM *rom, BoltOperator *op, PetscInt maxR
   PetscCall(PetscMalloc6(3 * n * u->alloc, &u->Ua, 3 * n * u->alloc, &u->Za, 9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w, 3 * u->alloc, &u->piv));
   PetscCallMPI(MPI_Comm_size(rom->comm, &size));
   PetscCall(PetscMalloc2(size, &u->counts, size, &u->displs));
-  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, NULL, &u->vb));
-  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, NULL, &u->vx));
   rom->update    = u;
   op->ops.factor = ROMUpdateFactor;
   op->ops.solve  = ROMUpdateSolve;
@@ -488,8 +485,6 @@ PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **up)
   PetscCall(PetscFree(u->send));
   PetscCall(PetscFree(u->recv));
   PetscCall(PetscFree2(u->name, u->perm));
-  PetscCall(VecDestroy(&u->vb));
-  PetscCall(VecDestroy(&u->vx));
   PetscCall(PetscFree(*up));
   PetscFunctionReturn(0);
 }
