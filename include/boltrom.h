@@ -388,6 +388,7 @@ PetscErrorCode BoltDualCreate(BoltOperator *, BoltDual **);
 PetscErrorCode BoltDualSetFromOptions(BoltDual *);
 PetscErrorCode BoltDualSetUp(BoltDual *);
 PetscErrorCode BoltDualSetEffective(BoltDual *, PetscBool, PetscReal, PetscReal);
+PetscErrorCode BoltDualFactorInto(BoltDual *, Mat, KSP);
 PetscErrorCode BoltDualSolve(BoltDual *, Vec, Vec, PetscBool, PetscInt *, PetscInt *);
 PetscErrorCode BoltDualSolveStatic(BoltDual *, Vec, Vec, PetscReal, PetscInt *, PetscInt *);
 PetscErrorCode BoltDualResetCounters(BoltDual *);

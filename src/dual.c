@@ -13,8 +13,10 @@ PetscErrorCode BoltDualInnerRegister(const char name[], BoltDualInnerFn fn)
   PetscFunctionReturn(0);
 }
 
-/* K_eff = K + K_c (static) or a1 M + a4 C + K + K_c, factorised. */
-static PetscErrorCode BoltDualFactorAfresh(BoltDual *d)
+/* A = K + K_c (static) or a1 M + a4 C + K + K_c of the current contact state, factorised by ksp;
+   timed and counted as the loop's factorisation. A and ksp are the loop's own, or a model's that
+   keeps several (the ROM's references). */
+PetscErrorCode BoltDualFactorInto(BoltDual *d, Mat A, KSP ksp)
 {
   BoltOperator  *op = d->op;
   Mat            Kc;
@@ -26,24 +28,24 @@ static PetscErrorCode BoltDualFactorAfresh(BoltDual *d)
   PetscCall(op->ops.contactStiffness(op, &Kc));
   /* summed afresh in the pattern fixed at set-up, in the order a kept copy of the structural
      part would give (no FOM-sized copy of it is held: at 562k DOFs memory is the limit) */
-  PetscCall(MatZeroEntries(d->Keff));
-  PetscCall(MatAXPY(d->Keff, 1.0, op->K, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatZeroEntries(A));
+  PetscCall(MatAXPY(A, 1.0, op->K, SUBSET_NONZERO_PATTERN));
   if (d->dynamic) {
-    PetscCall(MatAXPY(d->Keff, d->massCoef, op->M, SUBSET_NONZERO_PATTERN));
-    PetscCall(MatAXPY(d->Keff, d->dampingCoef, op->C, SUBSET_NONZERO_PATTERN));
+    PetscCall(MatAXPY(A, d->massCoef, op->M, SUBSET_NONZERO_PATTERN));
+    PetscCall(MatAXPY(A, d->dampingCoef, op->C, SUBSET_NONZERO_PATTERN));
   }
-  PetscCall(MatAXPY(d->Keff, 1.0, Kc, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatAXPY(A, 1.0, Kc, SUBSET_NONZERO_PATTERN));
   PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   d->tContactStiffness += t1 - t0;
   PetscCall(PetscLogEventBegin(boltLog.factorization, 0, 0, 0, 0));
-  PetscCall(KSPSetOperators(d->ksp, d->Keff, d->Keff));
-  PetscCall(KSPSetUp(d->ksp));
+  PetscCall(KSPSetOperators(ksp, A, A));
+  PetscCall(KSPSetUp(ksp));
   PetscCall(PetscLogEventEnd(boltLog.factorization, 0, 0, 0, 0));
   {
     PC             pc;
     PCFailedReason reason;
-    PetscCall(KSPGetPC(d->ksp, &pc));
+    PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PCGetFailedReason(pc, &reason));
     PetscCheck(reason == PC_NOERROR, op->comm, PETSC_ERR_NOT_CONVERGED, "%s: factorisation of the effective stiffness failed (%s) at step %" PetscInt_FMT ", t = %g s: the system is singular (a part held by contact alone lost all contact?)", op->name, PCFailedReasons[reason], d->step, (double)d->time);
   }
@@ -59,7 +61,7 @@ static PetscErrorCode BoltDualFactor(BoltDual *d)
 {
   PetscFunctionBeginUser;
   if (d->op->ops.factor) PetscCall(d->op->ops.factor(d->op, d));
-  else PetscCall(BoltDualFactorAfresh(d));
+  else PetscCall(BoltDualFactorInto(d, d->Keff, d->ksp));
   PetscFunctionReturn(0);
 }
 

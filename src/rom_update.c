@@ -85,53 +85,28 @@ static PetscBool ROMBlockDiffers(const PetscReal *cur, const PetscReal *ref)
   return PETSC_FALSE;
 }
 
-/* The current state factorised as reference r: K_cr brought to it (the exact sums of
-   ROMContactStiffness over the elements that differ from the state in K_cr), A formed as the
-   dual loop forms K_eff, and factorised. */
+/* The current state factorised as reference r by the dual loop's factorisation: K_cr brought to
+   it there (the exact sums of ROMContactStiffness over the elements that differ from the state in
+   K_cr, whose dirty flags are raised again here). */
 static PetscErrorCode ROMReferenceMake(BoltROM *rom, BoltOperator *op, BoltDual *d, PetscInt r)
 {
   BoltROMUpdate  *u   = rom->update;
   ROMReference   *ref = &u->ref[r];
   const PetscInt  ne  = rom->contact->nelem;
-  Mat             Kc;
-  PetscLogDouble  t0, t1, t2;
-  PC              pc;
-  PCFailedReason  reason;
 
   PetscFunctionBeginUser;
   if (!ref->Ke) { /* made when first needed: a scene whose set holds uses one */
     PetscCall(PetscMalloc3(144 * ne + 1, &ref->Ke, ne + 1, &ref->dev, 4 * ne + 1, &ref->slotOf));
     PetscCall(PetscMalloc3(3 * rom->n * u->alloc, &ref->U, 3 * rom->n * u->alloc, &ref->Z, 9 * u->alloc * u->alloc, &ref->G));
   }
-  PetscCall(PetscTime(&t0));
-  PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
   for (PetscInt e = 0; e < ne; e++) {
     if (u->devRun[e]) op->state->dirty[e] = PETSC_TRUE;
     u->devRun[e] = PETSC_FALSE;
   }
   rom->KcrValid = PETSC_FALSE; /* its version may have been taken while the flags were held here */
-  PetscCall(op->ops.contactStiffness(op, &Kc));
   if (!ref->A) PetscCall(MatDuplicate(op->K, MAT_DO_NOT_COPY_VALUES, &ref->A));
-  PetscCall(MatCopy(op->K, ref->A, SAME_NONZERO_PATTERN));
-  if (d->dynamic) {
-    PetscCall(MatAXPY(ref->A, d->massCoef, op->M, SAME_NONZERO_PATTERN));
-    PetscCall(MatAXPY(ref->A, d->dampingCoef, op->C, SAME_NONZERO_PATTERN));
-  }
-  PetscCall(MatAXPY(ref->A, 1.0, Kc, SAME_NONZERO_PATTERN));
-  PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
-  PetscCall(PetscTime(&t1));
-  PetscCall(PetscLogEventBegin(boltLog.factorization, 0, 0, 0, 0));
   if (!ref->ksp) PetscCall(BoltDirectSolverCreate(PETSC_COMM_SELF, op->prefix, NULL, PETSC_FALSE, op->solverType, &ref->ksp));
-  PetscCall(KSPSetOperators(ref->ksp, ref->A, ref->A));
-  PetscCall(KSPSetUp(ref->ksp));
-  PetscCall(PetscLogEventEnd(boltLog.factorization, 0, 0, 0, 0));
-  PetscCall(KSPGetPC(ref->ksp, &pc));
-  PetscCall(PCGetFailedReason(pc, &reason));
-  PetscCheck(reason == PC_NOERROR, op->comm, PETSC_ERR_NOT_CONVERGED, "%s: factorisation of the effective stiffness failed (%s) at step %" PetscInt_FMT ", t = %g s: the system is singular (a part held by contact alone lost all contact?)", op->name, PCFailedReasons[reason], d->step, (double)d->time);
-  PetscCall(PetscTime(&t2));
-  d->tContactStiffness += t1 - t0;
-  d->tDisplacements += t2 - t1;
-  d->factorizations++;
+  PetscCall(BoltDualFactorInto(d, ref->A, ref->ksp)); /* K_cr brought to the current state there */
   PetscCall(PetscArraycpy(ref->Ke, u->Kcur, 144 * ne));
   for (PetscInt e = 0; e < ne; e++) ref->dev[e] = PETSC_FALSE;
   for (PetscInt i = 0; i < 4 * ne; i++) ref->slotOf[i] = -1;
