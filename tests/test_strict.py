@@ -200,6 +200,7 @@ def test_rom_opening_shapes_follow_the_fom_where_the_load_opens_the_joint(joint_
     d = tmp_path / "with"
     s = run_summary(scene + ["-fom", "true", "-output_dir", str(d), "-rom_file", str(d / "r.rom.h5")], d)
     assert s["rom"]["opening_scale"] == 2 and s["rom"]["opening_krylov"] == 3 and s["rom"]["contact_band_scale"] == 1
+    assert s["rom"]["held_points"] == 1 and s["rom"]["update_rank"] == (3 * s["rom"]["dim"]) // 5
     assert s["rom"]["dim"] > 200  # 151 without the shapes: the load changes some 25 node pairs
     assert s["errors"]["load_point"]["e_L2"] <= 3.5e-3
     held = s["rom"]["factorizations"] + s["rom"]["low_rank_updates"]
@@ -210,13 +211,14 @@ def test_rom_opening_shapes_follow_the_fom_where_the_load_opens_the_joint(joint_
     d = tmp_path / "free"
     s = run_summary(scene + ["-fom", "false", "-rom_hold_unmarked", "false", "-output_dir", str(d),
                              "-rom_file", str(tmp_path / "with" / "r.rom.h5")], d)
+    assert s["rom"]["held_points"] == 0
     with h5py.File(d / "paper-step.h5") as f:
         rom = np.array(f["rom/probe"]).ravel()
     assert np.linalg.norm(rom - fom) <= 3.5e-3 * np.linalg.norm(fom)
     assert s["rom"]["factorizations"] + s["rom"]["low_rank_updates"] > 1.5 * held
     d = tmp_path / "without"
     s = run_summary(scene + ["-fom", "false", "-rom_opening_shapes", "0", "-output_dir", str(d), "-rom_file", str(d / "r.rom.h5")], d)
-    assert s["rom"]["contact_band_scale"] == 2e5
+    assert s["rom"]["contact_band_scale"] == 2e5 and s["rom"]["held_points"] == 0
     with h5py.File(d / "paper-step.h5") as f:
         rom = np.array(f["rom/probe"]).ravel()
     assert np.linalg.norm(rom - fom) > 1e-2 * np.linalg.norm(fom)
