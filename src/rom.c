@@ -584,7 +584,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
      the basis has no shapes to open them, and freed they chattered at the washers' rims */
   PetscCall(PetscFree(rom->holdMask));
   op->state->hold = NULL;
-  if (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0) {
+  if (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) { /* the augmented ROM (no interface reduction) can open any pair */
     PetscCall(PetscMalloc1(4 * rom->contact->nelem + 1, &rom->holdMask));
     for (PetscInt i = 0; i < 4 * rom->contact->nelem; i++) rom->holdMask[i] = rom->marked[i] ? PETSC_FALSE : PETSC_TRUE;
     op->state->hold = rom->holdMask;
