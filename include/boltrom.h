@@ -187,7 +187,7 @@ typedef struct {
   PetscReal      *anchor;         /* 3 per point: tangential position where a re-closed pair sticks (0: since the start) */
   PetscReal      *lambdaForce;    /* 3 per point: lambda - epsT anchor, the multipliers that the solve's forces take */
   PetscBool       anchored;       /* some local point has a non-zero anchor */
-  const PetscBool *hold;          /* per point, or NULL: the point keeps its state (a ROM's points outside its opening shapes) */
+  const PetscBool *mayChange;     /* per point, or NULL (all): the points whose state may change (a ROM's: those of its opening shapes) */
   PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
   PetscBool      *dirty;          /* element whose activity or penalty changed since its Ke was built */
   PetscReal      *Ke;             /* 576 per element: stiffness of its active Gauss points (made when first needed) */
@@ -511,7 +511,6 @@ typedef struct {
   PetscInt        nOpeningPairs; /* node pairs with opening shapes in the basis */
   PetscBool      *marked;        /* 4 per local contact element: the point's state changed in those static solves (NULL: not made) */
   PetscBool       holdUnmarked;  /* -rom_hold_unmarked: online, the other points keep their preloaded state */
-  PetscBool      *holdMask;      /* per point: held (the state's hold), or NULL */
   PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
   PetscInt        updateRank;    /* -rom_update_rank as given (-1: the default) */
   PetscInt        updateRankUsed; /* as resolved when the operator was made (0: refactorise) */

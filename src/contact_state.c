@@ -347,7 +347,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
       {
         const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
         const PetscReal  band = s->bandTraction[pair];
-        if (s->hold && s->hold[gp]) now = s->active[gp];
+        if (s->mayChange && !s->mayChange[gp]) now = s->active[gp];
         else if (s->active[gp]) now = (s->closeOnly || tnOpen[gp] < band) ? PETSC_TRUE : PETSC_FALSE;
         else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > s->activationGap ? PETSC_TRUE : PETSC_FALSE;
       }

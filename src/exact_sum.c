@@ -34,8 +34,15 @@ PetscErrorCode BoltExactSumBegin(BoltExactSum *s, PetscInt n, PetscReal bound, P
   PetscFunctionReturn(0);
 }
 
-/* acc += x (n values), each split onto the two grids: (sigma + x) - sigma rounds x to the grid
-   of sigma, and x minus that is exact. Must not be compiled with -ffast-math. */
+/* x split onto the two grids: (sigma + x) - sigma rounds x to the grid of sigma, and x minus
+   that is exact. Must not be compiled with -ffast-math. */
+static inline void BoltExactSumSplit(PetscReal s1, PetscReal s2, PetscReal x, PetscReal *q, PetscReal *r)
+{
+  *q = (s1 + x) - s1;
+  *r = (s2 + (x - *q)) - s2;
+}
+
+/* acc += x (n values), each split onto the two grids. */
 void BoltExactSumAdd(BoltExactSum *s, const PetscReal x_[])
 {
   const PetscReal s1 = s->sigma[0], s2 = s->sigma[1];
@@ -44,10 +51,10 @@ void BoltExactSumAdd(BoltExactSum *s, const PetscReal x_[])
 
   if (s1 == 0) return;
   for (PetscInt j = 0; j < s->n; j++) {
-    PetscReal v = x[j], q = (s1 + v) - s1;
+    PetscReal q, r;
+    BoltExactSumSplit(s1, s2, x[j], &q, &r);
     a1[j] += q;
-    v -= q;
-    a2[j] += (s2 + v) - s2;
+    a2[j] += r;
   }
 }
 
@@ -60,9 +67,8 @@ void BoltExactSumAddParts(BoltExactSum *s, const PetscReal x_[], PetscReal p1_[]
   const PetscReal *restrict x = x_;
 
   for (PetscInt j = 0; j < s->n; j++) {
-    PetscReal v = x[j], q = s1 == 0 ? 0 : (s1 + v) - s1, r;
-    v -= q;
-    r = s1 == 0 ? 0 : (s2 + v) - s2;
+    PetscReal q = 0, r = 0; /* a zero grid: every term is zero */
+    if (s1 != 0) BoltExactSumSplit(s1, s2, x[j], &q, &r);
     a1[j] += q;
     a2[j] += r;
     p1[j] = q;

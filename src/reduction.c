@@ -623,7 +623,6 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(rom->marked));
-  PetscCall(PetscFree(rom->holdMask));
   PetscCall(BoltROMUpdateDestroy(&rom->update));
   PetscCall(PetscFree4(rom->fAcc, rom->fOwn, rom->fNew, rom->fParts));
   PetscCall(PetscFree(*romp));

@@ -101,7 +101,8 @@ static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal 
     BoltExactSumAddParts(&rom->sum, g, p, p + n);
   }
   PetscCall(PetscArraycpy(rom->fAcc, rom->sum.acc, 2 * n));
-  PetscCall(PetscArraycpy(rom->fOwn, fnew, 12 * c->nelem));
+  rom->fNew        = rom->fOwn; /* the forces now in fAcc; the old ones are scratch */
+  rom->fOwn        = fnew;
   rom->fPartsValid = PETSC_TRUE;
   PetscCall(VecGetArray(F, &y));
   PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
@@ -148,13 +149,8 @@ static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
   PetscCall(BoltExactSumBegin(&rom->sum, n, bound, c->ngpGlobal / 4));
   for (PetscInt e = 0; e < c->nelem && bound > 0; e++) {
-    const PetscReal *f = &rom->felem[12 * e], *D = &rom->De[12 * n * e];
     if (rom->DeMax[e] == 0) continue;
-    for (PetscInt j = 0; j < n; j++) {
-      PetscReal v = 0;
-      for (PetscInt k = 0; k < 12; k++) v += D[k + 12 * j] * f[k];
-      g[j] = v;
-    }
+    ROMElementForceTerm(rom, e, &rom->felem[12 * e], g);
     BoltExactSumAdd(&rom->sum, g);
   }
   PetscCall(VecGetArray(F, &y));
@@ -578,17 +574,12 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(ROMSetUpGapRows(rom));
   op->ops.contactGaps  = ROMContactGaps;
   op->ops.openTraction = ROMOpenTraction;
+  /* with opening shapes, only the points the opening solves changed may change state: the basis
+     has no shapes to open the others, and freed they chattered at the washers' rims (the
+     augmented ROM, without interface reduction, can open any pair) */
+  op->state->mayChange = (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) ? rom->marked : NULL;
   /* low-rank updates of the factorisation: by default where the active set is expected to move
      (the strict law's penalty ROM); the stick law's keeps refactorising, as in the paper */
-  /* with opening shapes, the points the opening solves did not change hold their preloaded state:
-     the basis has no shapes to open them, and freed they chattered at the washers' rims */
-  PetscCall(PetscFree(rom->holdMask));
-  op->state->hold = NULL;
-  if (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) { /* the augmented ROM (no interface reduction) can open any pair */
-    PetscCall(PetscMalloc1(4 * rom->contact->nelem + 1, &rom->holdMask));
-    for (PetscInt i = 0; i < 4 * rom->contact->nelem; i++) rom->holdMask[i] = rom->marked[i] ? PETSC_FALSE : PETSC_TRUE;
-    op->state->hold = rom->holdMask;
-  }
   rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (rom->contact->law.strict && !rom->augment ? (3 * n) / 5 : 0);
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
   PetscCall(PetscFree4(rom->fAcc, rom->fOwn, rom->fNew, rom->fParts));

@@ -187,7 +187,7 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
   PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));
   PetscCall(BoltJSONInt(j, "update_rank", rom->updateRankUsed));
-  PetscCall(BoltJSONInt(j, "held_points", rom->holdMask != NULL));
+  PetscCall(BoltJSONInt(j, "held_points", s->romRun->op->state->mayChange != NULL));
   PetscCall(SummaryNewmarkRun(j, s->romRun, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));
   if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(j, "orthogonality", rom->orthogonality));
