@@ -37,8 +37,9 @@ LDLIBS_B := $(SLEPC_LIB) $(PETSC_LIB) -lmetis -lm
 all: bin/boltrom $(TEST_BIN)
 
 # the reduced model's per-element loops: vectorised (the cheap default declines loops of
-# unknown length); vectorising independent lanes does not change a result's bits
-build/exact_sum.o build/rom.o: CFLAGS_B += -fvect-cost-model=dynamic
+# unknown length); vectorising independent lanes does not change a result's bits, nor does a
+# wider vector while no multiply and add are contracted into one FMA
+build/exact_sum.o build/rom.o: CFLAGS_B += -fvect-cost-model=dynamic -ffp-contract=off
 
 build/%.o: src/%.c $(HEADERS)
 	@mkdir -p build

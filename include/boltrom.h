@@ -488,6 +488,14 @@ typedef struct {
   PetscInt       *gpRows;            /* 4 per local point: the row of each node it interpolates (-1: none) */
   PetscScalar    *gnRow;             /* nGapRows: scratch */
   PetscReal      *tnC, *tnK;         /* per local point: the opening test's traction is tnC + tnK g.n */
+  /* the whole gaps of the open points that may close and stick (strict law): their rows of D_e,
+     gathered for a state that lasts */
+  PetscInt        nOpen, openCapacity; /* local open points; room for them in Dopen */
+  PetscInt       *openRow;           /* per local point: its first row in Dopen (-1: closed) */
+  PetscScalar    *Dopen, *gOpen;     /* 3 nOpen x n, column-major; 3 nOpen scratch */
+  PetscObjectState openVersion, openSeenVersion; /* of the gathered rows; of the last solve's state */
+  PetscBool       openValid;
+  PetscInt        openSeen;          /* solves in a row with the state openSeenVersion */
   BoltContactSet *contact;
   /* offline figures */
   PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];

@@ -620,6 +620,9 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
   PetscCall(PetscFree3(rom->gpRows, rom->tnC, rom->tnK));
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
+  PetscCall(PetscFree(rom->openRow));
+  PetscCall(PetscFree2(rom->Dopen, rom->gOpen));
+  rom->openCapacity = 0;
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(rom->marked));

@@ -11,7 +11,12 @@
 
 /* u = A x for a column-major m x n block A of rows of the basis. Each row is summed in the same
    order whatever its position in the block (a BLAS kernel may treat the rows of a vector block
-   and of its tail differently), so a row gets the same bits on any partition. */
+   and of its tail differently), so a row gets the same bits on any partition. Where the CPU has
+   AVX2 a clone with four rows per vector runs instead: the same products and sums per row (the
+   file is compiled without contraction into FMAs), so the same bits. */
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 static void ROMRowsTimes(PetscInt m, PetscInt n, const PetscScalar *A, const PetscScalar *x, PetscScalar *u)
 {
   for (PetscInt i = 0; i < m; i++) u[i] = 0;
@@ -337,6 +342,35 @@ static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* The rows of D_e at the node pairs of the open points (three each, column-major), and where
+   each point's rows start. */
+static PetscErrorCode ROMGatherOpenRows(BoltROM *rom, BoltContactState *s)
+{
+  BoltContactSet *c = rom->contact;
+  const PetscInt  n = rom->n, ngp = 4 * c->nelem;
+  PetscInt        m = 0;
+
+  PetscFunctionBeginUser;
+  if (!rom->openRow) PetscCall(PetscMalloc1(ngp + 1, &rom->openRow));
+  for (PetscInt gp = 0; gp < ngp; gp++) rom->openRow[gp] = s->active[gp] ? -1 : 3 * m++;
+  rom->nOpen = m;
+  if (m > rom->openCapacity) { /* kept between gatherings: fresh pages are slow to touch */
+    rom->openCapacity = PetscMax(m, (3 * rom->openCapacity) / 2);
+    PetscCall(PetscFree2(rom->Dopen, rom->gOpen));
+    PetscCall(PetscMalloc2(3 * rom->openCapacity * n + 1, &rom->Dopen, 3 * rom->openCapacity + 1, &rom->gOpen));
+  }
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscReal *D = &rom->De[12 * n * (gp / 4) + 3 * (gp % 4)];
+    const PetscInt   i = rom->openRow[gp];
+    if (i < 0) continue;
+    for (PetscInt j = 0; j < n; j++)
+      for (PetscInt k = 0; k < 3; k++) rom->Dopen[i + k + 3 * m * j] = D[12 * j + k];
+  }
+  rom->openVersion = s->version;
+  rom->openValid   = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* The gaps at the local contact points from rows of node-pair differences D = V_b - V_a (a
    sixth or half of the rows of V_c, and free of the cancellation in u_b - u_a), under the
    penalty law: there the multipliers do not take the trial traction, so the gaps only feed the
@@ -349,6 +383,7 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   BoltROM           *rom = (BoltROM *)op->ctx;
   BoltContactSet    *c   = rom->contact;
   const PetscScalar *x;
+  PetscBool          gathered;
 
   PetscFunctionBeginUser;
   if (op->state->augment) {
@@ -358,6 +393,22 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   }
   PetscCall(VecGetArrayRead(q, &x));
   ROMRowsTimes(rom->nGapRows, rom->n, rom->Rn, x, rom->gnRow);
+  /* the whole gaps of the open pairs that may close and stick (their anchors need them), from
+     their node pairs' rows of D_e: once a state has lasted four solves, from those rows gathered
+     into one block (one product, each row summed in the order of a row alone); before that point
+     by point (a gathering costs a few of those, and a churning set would pay it at every change) */
+  gathered = PETSC_FALSE;
+  if (c->law.strict && c->reanchor && rom->flat && c->quadrature == BOLT_QUADRATURE_NODAL) {
+    if (!rom->openValid || rom->openVersion != op->state->version) {
+      if (rom->openSeenVersion != op->state->version) rom->openSeen = 0;
+      rom->openSeenVersion = op->state->version;
+      if (++rom->openSeen >= 4) PetscCall(ROMGatherOpenRows(rom, op->state));
+    }
+    if (rom->openValid && rom->openVersion == op->state->version) {
+      ROMRowsTimes(3 * rom->nOpen, rom->n, rom->Dopen, x, rom->gOpen);
+      gathered = PETSC_TRUE;
+    }
+  }
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     const PetscInt  *r = &rom->gpRows[4 * gp];
     const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp]; /* gpN: 4 per point */
@@ -371,7 +422,10 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
       for (PetscInt k = 0; k < 3; k++) g[k] = gn * n[k];
       /* an open pair that may close sticks where it closes: its anchor needs the whole gap (from
          its node pair's rows of D_e, in a fixed order: the same bits on any partition) */
-      if (c->law.strict && c->reanchor && !op->state->active[gp] && c->quadrature == BOLT_QUADRATURE_NODAL) {
+      if (gathered && !op->state->active[gp]) {
+        const PetscInt i = rom->openRow[gp];
+        for (PetscInt k = 0; k < 3; k++) g[k] = PetscRealPart(rom->gOpen[i + k]);
+      } else if (c->law.strict && c->reanchor && !op->state->active[gp] && c->quadrature == BOLT_QUADRATURE_NODAL) {
         const PetscReal *D = &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)];
         for (PetscInt k = 0; k < 3; k++) {
           PetscReal v = 0;
@@ -548,7 +602,8 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
-  rom->KcrValid = rom->FrValid = rom->tnValid = PETSC_FALSE; /* a new state: its versions start afresh */
+  rom->KcrValid = rom->FrValid = rom->tnValid = rom->openValid = PETSC_FALSE; /* a new state: its versions start afresh */
+  rom->openSeen = 0;
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscCalloc1(144 * rom->contact->nelem + 1, &rom->Ke));
   PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
