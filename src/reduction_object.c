@@ -41,7 +41,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   o->augment = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
   o->preloadState = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_preload_state", "ROM with the penalty law: start from the FOM's preloaded state, solved offline (its displacement and its closed-contact load response join the basis; its multipliers stay frozen online, the penalty carries the increments)", NULL, o->preloadState, &o->preloadState, &o->preloadStateSet));
+  PetscCall(PetscOptionsBool("-rom_preload_state", "ROM with the penalty law: start from the FOM's preloaded state, solved offline (its displacement and its closed-contact load response join the basis; its multipliers start the ROM's static solve, after which the penalty alone carries the contact: docs/reduction.md, 'Preloaded state')", NULL, o->preloadState, &o->preloadState, &o->preloadStateSet));
   o->penaltyScale = 0;
   o->nClosed = 3;
   PetscCall(PetscOptionsInt("-rom_closed_krylov", "With -rom_preload_state or -rom_static_shapes: closed-contact Krylov vectors added after the load response (each the FOM's static response, contact closed, to the mass times the previous one)", NULL, o->nClosed, &o->nClosed, NULL));
