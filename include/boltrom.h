@@ -186,6 +186,8 @@ typedef struct {
   PetscBool       reanchor;       /* strict law, -contact_reclose stick: a pair that closes again sticks where it closes */
   PetscReal      *anchor;         /* 3 per point: tangential position where a re-closed pair sticks (0: since the start) */
   PetscReal      *lambdaForce;    /* 3 per point: lambda - epsT anchor, the multipliers that the solve's forces take */
+  PetscReal      *lambdaPrev;     /* 3 per point: the multipliers of the converged step before the last (BoltContactStateExtrapolate) */
+  PetscInt       *closedSteps;    /* per point: converged steps in a row it ended closed, at most 2 */
   PetscBool       anchored;       /* some local point has a non-zero anchor */
   const PetscBool *mayChange;     /* per point, or NULL (all): the points whose state may change (a ROM's: those of its opening shapes) */
   PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
@@ -230,6 +232,8 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *, PetscReal *, PetscRea
 PetscErrorCode BoltContactStateOpenTraction(BoltContactState *, PetscReal[]);
 PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, const PetscReal[], PetscInt *, PetscBool *);
 PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
+void           BoltContactStateExtrapolate(BoltContactState *);
+void           BoltContactStateEndStep(BoltContactState *);
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
 PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);
@@ -241,7 +245,7 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *);
 PetscErrorCode BoltContactStateCountReclosed(BoltContactState *, PetscInt *, PetscInt *);
 PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
 PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
-#define BOLT_CONTACT_PACK 52 /* values per element of BoltContactStatePack */
+#define BOLT_CONTACT_PACK 68 /* values per element of BoltContactStatePack */
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
 PetscErrorCode BoltContactStateDestroy(BoltContactState **);
@@ -375,6 +379,7 @@ struct BoltDual_s {
   PetscReal       time;
   Vec             Fc, work, qp, FcLambda;
   PetscReal      *tnOpen;         /* per Gauss point: the traction of the opening test */
+  PetscBool       extrapolate;    /* -contact_extrapolate: the strict law's steps start from extrapolated multipliers */
   PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
   /* counters and phase times (the paper's Table 2) */
   PetscInt        factorizations, updates, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;

@@ -29,6 +29,7 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
   }
   PetscCall(PetscCalloc2(12 * ne + 1, &s->lambda, 12 * ne + 1, &s->gap));
   PetscCall(PetscCalloc2(12 * ne + 1, &s->anchor, 12 * ne + 1, &s->lambdaForce));
+  PetscCall(PetscCalloc2(12 * ne + 1, &s->lambdaPrev, 4 * ne + 1, &s->closedSteps));
   s->reanchor = c->reanchor;
   PetscCall(PetscMalloc4(4 * ne + 1, &s->active, 4 * ne + 1, &s->activeOld, 4 * ne + 1, &s->activeOlder, 4 * ne + 1, &s->released));
   PetscCall(PetscMalloc1(ne + 1, &s->dirty));
@@ -45,6 +46,7 @@ PetscErrorCode BoltContactStateDestroy(BoltContactState **sp)
   if (!s) PetscFunctionReturn(0);
   PetscCall(PetscFree2(s->lambda, s->gap));
   PetscCall(PetscFree2(s->anchor, s->lambdaForce));
+  PetscCall(PetscFree2(s->lambdaPrev, s->closedSteps));
   PetscCall(PetscFree4(s->active, s->activeOld, s->activeOlder, s->released));
   PetscCall(PetscFree(s->dirty));
   PetscCall(PetscFree(s->Ke));
@@ -114,7 +116,8 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
 }
 
 /* Element e's state as BOLT_CONTACT_PACK values (checkpoints): multipliers (12), gaps (12), the
-   active flags of the last three outer iterations and the released flags (4 each), anchors (12). */
+   active flags of the last three outer iterations and the released flags (4 each), anchors (12),
+   the multipliers of the step before (12) and the closed steps in a row (4). */
 void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
 {
   PetscInt k = 0;
@@ -126,6 +129,8 @@ void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->activeOlder[4 * e + i];
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->released[4 * e + i];
   for (PetscInt i = 0; i < 12; i++) buf[k++] = s->anchor[12 * e + i];
+  for (PetscInt i = 0; i < 12; i++) buf[k++] = s->lambdaPrev[12 * e + i];
+  for (PetscInt i = 0; i < 4; i++) buf[k++] = s->closedSteps[4 * e + i];
 }
 
 /* The inverse of BoltContactStatePack; the element is due for a stiffness update. Not collective:
@@ -142,6 +147,8 @@ void BoltContactStateUnpack(BoltContactState *s, PetscInt e, const PetscReal buf
     s->anchor[12 * e + i] = buf[40 + i];
     if (buf[40 + i] != 0) s->anchored = PETSC_TRUE;
   }
+  for (PetscInt i = 0; i < 12; i++) s->lambdaPrev[12 * e + i] = buf[52 + i];
+  for (PetscInt i = 0; i < 4; i++) s->closedSteps[4 * e + i] = (PetscInt)buf[64 + i];
   s->dirty[e]    = PETSC_TRUE;
   s->KcAssembled = PETSC_FALSE;
 }
@@ -258,6 +265,7 @@ static void BoltContactStateAnchorAt(BoltContactState *s, PetscInt gp)
    snap, and stick-open-stick would cycle (docs/model.md section 8). */
 static void BoltContactStateReclose(BoltContactState *s, PetscInt gp)
 {
+  s->closedSteps[gp] = 0; /* its multipliers start afresh */
   if (!s->law.strict) return;
   if (s->reanchor) BoltContactStateAnchorAt(s, gp);
   else s->released[gp] = PETSC_TRUE;
@@ -272,6 +280,29 @@ void BoltContactStateSetAnchors(BoltContactState *s, const PetscReal anchor[])
     if (s->anchor[k] != 0) s->anchored = PETSC_TRUE;
   }
   BoltContactStateChanged(s); /* the forces of the multipliers move with the anchors */
+}
+
+/* At the start of a time step, from a converged one: the multipliers of the points that ended
+   the last two steps closed are extrapolated linearly in time, lambda <- 2 lambda_n - lambda_n-1.
+   The loop's first solve then starts from tractions that are off by the change of their rate, not
+   by their change over the step, and its gaps are that much smaller: where they are within the
+   tolerance, the step costs one solve. (The loop's fixed point does not depend on where it
+   starts.) Every rank calls it: the state changes. */
+void BoltContactStateExtrapolate(BoltContactState *s)
+{
+  for (PetscInt gp = 0; gp < 4 * s->set->nelem; gp++)
+    for (PetscInt k = 3 * gp; k < 3 * gp + 3; k++) {
+      const PetscReal before = s->lambdaPrev[k];
+      s->lambdaPrev[k] = s->lambda[k];
+      if (s->closedSteps[gp] == 2 && s->active[gp]) s->lambda[k] = 2 * s->lambda[k] - before;
+    }
+  BoltContactStateChanged(s);
+}
+
+/* After a converged time step: count the points that ended it closed. */
+void BoltContactStateEndStep(BoltContactState *s)
+{
+  for (PetscInt gp = 0; gp < 4 * s->set->nelem; gp++) s->closedSteps[gp] = s->active[gp] ? PetscMin(s->closedSteps[gp] + 1, 2) : 0;
 }
 
 /* Gaps relative to the anchors (after the raw gaps u_b - u_a were computed into gap). */

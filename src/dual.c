@@ -307,6 +307,7 @@ PetscErrorCode BoltDualCreate(BoltOperator *op, BoltDual **dp)
   d->tolLambda      = 1e-4;
   d->tolPenetration = 1e-9;
   d->warmStart      = PETSC_TRUE;
+  d->extrapolate    = PETSC_TRUE;
   d->closeCycles    = PETSC_TRUE;
   d->preloadScale   = 1.0;
   PetscCall(PetscStrncpy(d->innerType, "cg", sizeof(d->innerType)));
@@ -327,6 +328,7 @@ PetscErrorCode BoltDualSetFromOptions(BoltDual *d)
   PetscCall(PetscOptionsReal("-contact_tol_penetration", "Tolerance on the largest penetration of an active point [m] (strict law: on the largest gap of a closed pair; default 1e-9 x the shortest contact-face edge; stick law: 1e-9 m)", NULL, d->tolPenetration, &d->tolPenetration, &d->tolPenetrationSet));
   PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, d->warmStart, &d->warmStart, NULL));
   PetscCall(PetscOptionsBool("-contact_cycle_close", "Anti-cycling: when the active set cycles between two sets (its toggling points are then closed) or has not settled in half of -contact_max_outer, points may only close for the rest of the step; false: a cycle stops the run (or warns, with -contact_continue)", NULL, d->closeCycles, &d->closeCycles, NULL));
+  PetscCall(PetscOptionsBool("-contact_extrapolate", "Strict law, time steps: start each step's loop from the multipliers of the points closed over the last two steps extrapolated linearly in time (false: from the last step's)", NULL, d->extrapolate, &d->extrapolate, NULL));
   PetscCall(PetscOptionsBool("-contact_continue", "On non-convergence, warn and go on instead of stopping", NULL, d->continueOnFailure, &d->continueOnFailure, NULL));
   PetscCall(PetscOptionsInt("-contact_monitor", "Print the contact loop: 1 a line per outer iteration, 2 also per inner CG iteration", NULL, d->monitor, &d->monitor, NULL));
   PetscOptionsEnd();
@@ -454,6 +456,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
 
   PetscFunctionBeginUser;
   s->closeOnly = PETSC_FALSE;
+  if (d->extrapolate && d->dynamic) BoltContactStateExtrapolate(s);
   for (;;) {
     PetscInt  nchanged;
     PetscBool cycling;
@@ -497,6 +500,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     d->worstCompression = PetscMax(d->worstCompression, comp);
     d->worstProduct     = PetscMax(d->worstProduct, prod);
   }
+  if (d->dynamic) BoltContactStateEndStep(s);
   PetscCall(BoltDualCount(d, sets, solves, nouter, ninner));
   PetscFunctionReturn(0);
 }
