@@ -286,8 +286,8 @@ void BoltContactStateSetAnchors(BoltContactState *s, const PetscReal anchor[])
    the last two steps closed are extrapolated linearly in time, lambda <- 2 lambda_n - lambda_n-1.
    The loop's first solve then starts from tractions that are off by the change of their rate, not
    by their change over the step, and its gaps are that much smaller: where they are within the
-   tolerance, the step costs one solve. (The loop's fixed point does not depend on where it
-   starts.) Every rank calls it: the state changes. */
+   tolerance, the step costs one solve. The converged state moves only within the loop's
+   tolerance. Every rank calls it: the state changes. */
 void BoltContactStateExtrapolate(BoltContactState *s)
 {
   for (PetscInt gp = 0; gp < 4 * s->set->nelem; gp++)
