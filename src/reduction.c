@@ -622,7 +622,6 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
   PetscCall(PetscFree(rom->openRow));
   PetscCall(PetscFree2(rom->Dopen, rom->gOpen));
-  rom->openCapacity = 0;
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(rom->marked));

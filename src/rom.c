@@ -399,15 +399,16 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
      by point (a gathering costs a few of those, and a churning set would pay it at every change) */
   gathered = PETSC_FALSE;
   if (c->law.strict && c->reanchor && rom->flat && c->quadrature == BOLT_QUADRATURE_NODAL) {
-    if (!rom->openValid || rom->openVersion != op->state->version) {
+    gathered = (PetscBool)(rom->openValid && rom->openVersion == op->state->version);
+    if (!gathered) {
       if (rom->openSeenVersion != op->state->version) rom->openSeen = 0;
       rom->openSeenVersion = op->state->version;
-      if (++rom->openSeen >= 4) PetscCall(ROMGatherOpenRows(rom, op->state));
+      if (++rom->openSeen >= 4) {
+        PetscCall(ROMGatherOpenRows(rom, op->state));
+        gathered = PETSC_TRUE;
+      }
     }
-    if (rom->openValid && rom->openVersion == op->state->version) {
-      ROMRowsTimes(3 * rom->nOpen, rom->n, rom->Dopen, x, rom->gOpen);
-      gathered = PETSC_TRUE;
-    }
+    if (gathered) ROMRowsTimes(3 * rom->nOpen, rom->n, rom->Dopen, x, rom->gOpen);
   }
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     const PetscInt  *r = &rom->gpRows[4 * gp];
