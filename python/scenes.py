@@ -1,0 +1,15 @@
+"""The scenes that open part of the joint (paper-step otherwise: step load at t > 0, probe u_z at
+the load point), shared by scripts/rom-opening and scripts/bench-contact --scene. The third field
+says whether the ROM's opening shapes were tuned looking at the scene: yes (their scale and
+Krylov vectors), sign (only their taking the load's minus side too) or no."""
+
+SCENES = [  # (name, options, whether the opening shapes' defaults were chosen looking at it)
+    ("P5k-F100", ["-preload_force", "5000", "-load_force", "100"], "yes"),
+    ("P10k-F300", ["-preload_force", "10000", "-load_force", "300"], "yes"),
+    ("P20k-F1k", ["-preload_force", "20000", "-load_force", "1000"], "yes"),
+    ("P20k-C1k", ["-preload_force", "20000", "-load_force", "1000", "-load_group", "corner_point"], "yes"),
+    ("P2k-C300x", ["-preload_force", "2000", "-load_force", "300", "-load_group", "corner_point", "-load_direction", "1,0,0",
+                   "-probe_component", "0"], "no"),
+    ("P5k-F300y", ["-preload_force", "5000", "-load_force", "300", "-load_direction", "0,1,0", "-probe_component", "1"], "sign"),
+    ("P20k-S1k", ["-preload_force", "20000", "-load_force", "1000", "-load_history", "sine", "-load_frequency", "200"], "sign"),
+]
