@@ -121,6 +121,8 @@ typedef struct {
                               by the active-set loop; else the banded Gauss-point law of the paper */
   PetscReal penaltyFactor; /* default -contact_penalty_factor: a physical penalty (banded law) or
                               the augmentation parameter of the active-set loop (strict law) */
+  PetscBool friction;      /* Coulomb friction at closed pairs (-contact_friction): a closed pair
+                              sticks inside the cone |t_T| <= mu |t_N| and slips on it */
 } BoltContactLaw;
 extern PetscFunctionList BoltContactLawList;
 PetscErrorCode BoltContactLawRegister(const char[], PetscErrorCode (*)(BoltContactLaw *));
@@ -139,6 +141,11 @@ typedef struct {
   PetscReal           penaltyFactor;              /* x E of the softer part, per metre */
   PetscReal           epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS]; /* default penalties */
   PetscReal           bandTraction[BOLTROM_MAX_PAIRS]; /* default tension [Pa] beyond which a closed point opens */
+  PetscReal           friction[BOLTROM_MAX_PAIRS]; /* Coulomb coefficient per pair (frictional law) */
+  PetscReal           frictionDefault;             /* -contact_friction */
+  PetscReal           slipAngleTolerance;          /* -contact_slip_angle_tolerance [rad] */
+  PetscReal           slipStiffnessRatio;          /* -contact_slip_stiffness_ratio */
+  PetscBool           frictionSet;
   PetscInt            contactDofsPerPair[BOLTROM_MAX_PAIRS], contactDofs;
   PetscInt            elementsPerPair[BOLTROM_MAX_PAIRS];
   PetscReal           areaPerPair[BOLTROM_MAX_PAIRS];
@@ -188,6 +195,13 @@ typedef struct {
   PetscReal      *lambdaForce;    /* 3 per point: lambda - epsT anchor, the multipliers that the solve's forces take */
   PetscReal      *lambdaPrev;     /* 3 per point: the multipliers of the converged step before the last (BoltContactStateExtrapolate) */
   PetscInt       *closedSteps;    /* per point: converged steps in a row it ended closed, at most 2 */
+  PetscReal      *slipStart;      /* frictional law, 3 per point: its raw gap (u_b - u_a) at the start of the step */
+  PetscReal       dissipated;     /* frictional law: energy dissipated by slip over the converged steps [J] (local) */
+  PetscReal      *slipDir;        /* frictional law, 4 per point: the direction a slipping pair slides along in K_c,
+                                     and K_c's stiffness across it (the traction's derivative, mu |t_N| / |slip|) */
+  PetscReal       frictionChange; /* frictional law: the last update's largest slip-traction change over |t_N| (global) */
+  PetscReal       slipStiffnessRatio; /* frictional law: K_c takes a slipping pair's new stiffness when off by more than this factor */
+  PetscReal       slipAngleTolerance; /* frictional law: a slipping pair's direction turns when its traction is off it by more [rad] */
   PetscBool       anchored;       /* some local point has a non-zero anchor */
   const PetscBool *mayChange;     /* per point, or NULL (all): the points whose state may change (a ROM's: those of its opening shapes) */
   PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
@@ -216,7 +230,7 @@ PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
 PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[], Vec);
 void           BoltContactElementForces(BoltContactSet *, PetscInt, const PetscReal[], PetscReal[12]);
 PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, const PetscReal[], PetscReal[]);
-PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *, PetscInt, PetscReal, PetscReal, const PetscBool[], const PetscBool[], PetscReal[576]);
+PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *, PetscInt, PetscReal, PetscReal, const PetscBool[], const PetscBool[], const PetscReal[], PetscReal[576]);
 PetscErrorCode BoltContactSetView(BoltContactSet *, PetscViewer);
 PetscErrorCode BoltContactSetDestroy(BoltContactSet **);
 
@@ -234,6 +248,9 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, const PetscReal[
 PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
 void           BoltContactStateExtrapolate(BoltContactState *);
 void           BoltContactStateEndStep(BoltContactState *);
+void           BoltContactStateStartSlip(BoltContactState *, PetscBool);
+#define BOLT_FRICTION_MARGIN 1e-6 /* a sticking pair slips once its traction is beyond the cone by this fraction */
+PetscErrorCode BoltContactStateDissipated(BoltContactState *, PetscReal *);
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
 PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);
@@ -245,7 +262,7 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *);
 PetscErrorCode BoltContactStateCountReclosed(BoltContactState *, PetscInt *, PetscInt *);
 PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
 PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
-#define BOLT_CONTACT_PACK 68 /* values per element of BoltContactStatePack */
+#define BOLT_CONTACT_PACK 96 /* values per element of BoltContactStatePack */
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
 PetscErrorCode BoltContactStateDestroy(BoltContactState **);
@@ -259,6 +276,11 @@ static inline void BoltContactStateChanged(BoltContactState *s)
 static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)
 {
   return s->released[gp] ? 0 : s->epsT[pair];
+}
+/* Element e's slip directions for its stiffness (NULL: none, released points slide freely). */
+static inline const PetscReal *BoltContactStateSlipDirs(const BoltContactState *s, PetscInt e)
+{
+  return s->law.friction ? &s->slipDir[16 * e] : NULL;
 }
 
 /* ------------------------------------------------------------------ loads.c */
@@ -360,7 +382,7 @@ struct BoltDual_s {
   char            innerType[32];  /* -contact_inner */
   BoltDualInnerFn inner;
   PetscInt        maxOuter, maxInner;
-  PetscReal       tolLambda, tolPenetration; /* relative multiplier change; penetration [m] */
+  PetscReal       tolLambda, tolPenetration, tolFriction; /* relative multiplier change; penetration [m]; slip traction change / normal traction */
   PetscBool       tolPenetrationSet;         /* given as an option (else the law's default) */
   PetscBool       warmStart;      /* keep the multipliers across outer iterations and steps */
   PetscBool       closeCycles;    /* anti-cycling (-contact_cycle_close): once the set cycles or is slow to settle, points only close */
@@ -405,7 +427,7 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *, PetscInt, PetscInt, PetscInt,
 PetscErrorCode BoltContactMonitorTension(BoltDual *);
 
 /* ------------------------------------------------------------------ newmark.c */
-typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1 } BoltLoadHistory;
+typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1, BOLT_LOAD_RAMP = 2 } BoltLoadHistory;
 
 typedef struct {
   BoltOperator   *op;
@@ -413,6 +435,7 @@ typedef struct {
   PetscReal       beta, gamma, dt, tEnd;
   BoltLoadHistory history;
   PetscReal       frequency;
+  PetscReal       rampTime; /* -load_ramp_time (0: tEnd) */
   PetscBool       monitor;
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       calibratePreload;
@@ -421,6 +444,7 @@ typedef struct {
   Vec             q, v, acc, rhs, work;
   PetscInt        nsteps, step;
   PetscReal      *probeTime, *probeValue, *energy;
+  PetscReal      *slipping, *dissipated; /* per step: slipping contact points, energy dissipated by friction so far [J] */
   PetscInt        snapshotEvery, nsnap;
   Vec            *snap;
   PetscReal      *snapTime;

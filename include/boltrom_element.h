@@ -57,7 +57,7 @@ PetscErrorCode QuadNodalPoints(const PetscReal Xa[12], PetscReal N[16], PetscRea
 /* The pair's 24x24 penalty matrix from given point data (shape values, weights, normals, as
    QuadGaussPoints or QuadNodalPoints give them), active points only, with no tangential
    penalty at the points flagged in released (may be NULL). */
-PetscErrorCode QuadPairPenaltyStiffnessPoints(const PetscReal N[16], const PetscReal w[4], const PetscReal n[12], PetscReal epsN, PetscReal epsT, const PetscBool active[4], const PetscBool released[4], PetscReal Kc[576]);
+PetscErrorCode QuadPairPenaltyStiffnessPoints(const PetscReal N[16], const PetscReal w[4], const PetscReal n[12], PetscReal epsN, PetscReal epsT, const PetscBool active[4], const PetscBool released[4], const PetscReal slipDir[16], PetscReal Kc[576]);
 
 /* Area of the bilinear quad face (2x2 Gauss). */
 PetscErrorCode QuadArea(const PetscReal X[12], PetscReal *area);

@@ -5,9 +5,10 @@
      key of each DOF in the mesh as read (3 x vertex + component), and the ROM's are the reduced
      vectors themselves, so a checkpoint does not depend on how the mesh was partitioned;
    - contact_keys and contact_state: per contact element, its key (face a in the mesh as read)
-     and the multipliers, gaps and active flags of the last three outer iterations at its 4
-     Gauss points (36 values);
-   - history: the step counters and timings, then the probe, energy and snapshot-time histories.
+     and its contact state at its 4 points (BoltContactStatePack: multipliers, gaps, active flags
+     of the last three outer iterations, anchors, friction state);
+   - history: the step counters and timings, then the probe, energy, slipping-pair, friction
+     dissipation and snapshot-time histories.
    A restart may use other ranks: every rank reads the keyed data and picks its own rows. */
 #include "boltrom.h"
 #include <petscviewerhdf5.h>
@@ -82,7 +83,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   BoltContactSet *c    = op->contact;
   MPI_Comm        comm = op->comm;
   PetscMPIInt     rank;
-  PetscInt        nhist = BOLT_CKPT_NGLOBALS + 3 * (nm->step + 1) + nm->nsnap, k = 0, ne = c->nelem;
+  PetscInt        nhist = BOLT_CKPT_NGLOBALS + 5 * (nm->step + 1) + nm->nsnap, k = 0, ne = c->nelem;
   PetscScalar    *buf;
   PetscViewer     v;
   char            file[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN + 8], fp[PETSC_MAX_PATH_LEN + 512], **names;
@@ -115,6 +116,8 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->probeTime[i];
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->probeValue[i];
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->energy[i];
+    for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->slipping[i];
+    for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->dissipated[i];
     for (PetscInt i = 0; i < nm->nsnap; i++) buf[k++] = nm->snapTime[i];
     PetscCall(BoltHDF5WriteValues(v, comm, "history", nhist, 1, buf, PETSC_TRUE));
   }
@@ -177,7 +180,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   PetscCall(PetscViewerHDF5PushGroup(v, "/checkpoint"));
   PetscCall(BoltReadAll(v, comm, "history", &n, &h));
   nsnap = (PetscInt)h[1];
-  PetscCheck(n == BOLT_CKPT_NGLOBALS + 3 * (step + 1) + nsnap && (PetscInt)h[0] == step, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (its history does not match its step)", file);
+  PetscCheck(n == BOLT_CKPT_NGLOBALS + 5 * (step + 1) + nsnap && (PetscInt)h[0] == step, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (its history does not match its step)", file);
   PetscCheck(nsnap == 0 || (nm->snapshotEvery > 0 && nsnap <= nm->nsteps / nm->snapshotEvery + 1), comm, PETSC_ERR_USER_INPUT, "-restart: the checkpoint %s holds snapshots: restart with the same -snapshot_every", file);
 
   /* the model's vectors */
@@ -241,6 +244,8 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   for (PetscInt i = 0; i <= step; i++) nm->probeTime[i] = h[k++];
   for (PetscInt i = 0; i <= step; i++) nm->probeValue[i] = h[k++];
   for (PetscInt i = 0; i <= step; i++) nm->energy[i] = h[k++];
+  for (PetscInt i = 0; i <= step; i++) nm->slipping[i] = h[k++];
+  for (PetscInt i = 0; i <= step; i++) nm->dissipated[i] = h[k++];
   for (PetscInt i = 0; i < nsnap; i++) nm->snapTime[i] = h[k++];
   PetscCall(PetscFree(h));
   PetscCall(PetscPrintf(comm, "%s: restarted from %s at step %" PetscInt_FMT ", t = %g s\n", op->name, file, nm->step, (double)(nm->step * nm->dt)));

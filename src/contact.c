@@ -16,6 +16,9 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   c->activationGap  = -1; /* the law's default: SetFromOptions and SetUp fill it in */
   c->matchTolerance = 1e-6;
   c->reanchor       = PETSC_TRUE; /* the strict law's re-closing pairs stick where they close */
+  c->frictionDefault = 0.3;
+  c->slipAngleTolerance = 1e-2;
+  c->slipStiffnessRatio = 1.1;
   *cs               = c;
   PetscFunctionReturn(0);
 }
@@ -29,7 +32,7 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscFunctionBeginUser;
   PetscCall(BoltContactLawRegisterAll());
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
-  PetscCall(PetscOptionsFList("-contact_law", "Contact law: strict (one-sided contact at every node pair, closed pairs stick; active-set loop) or stick (the paper's: Gauss points, opening band, penalty 200 E/m)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
+  PetscCall(PetscOptionsFList("-contact_law", "Contact law: strict (one-sided contact at every node pair, closed pairs stick; active-set loop), coulomb (strict, with Coulomb friction: closed pairs stick inside the cone and slip on it; -contact_friction) or stick (the paper's: Gauss points, opening band, penalty 200 E/m)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
   PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, law)); /* an unknown law fails here, before any solve */
   c->penaltyFactor = law->penaltyFactor;
   c->quadrature    = law->strict ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
@@ -49,7 +52,15 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   if (c->activationGap < 0 && !law->strict) c->activationGap = 1e-7; /* strict: -1 until SetUp knows the mesh */
   PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m] (default: strict 1e-9 x the shortest contact-face edge, stick 1e-7)", NULL, c->activationGap, &c->activationGap, &set));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
+  PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient of every pair (-contact_law coulomb; -contact_<pair>_friction sets one pair)", NULL, c->frictionDefault, &c->frictionDefault, &c->frictionSet));
+  PetscCall(PetscOptionsReal("-contact_slip_angle_tolerance", "Coulomb friction: K_c keeps a slipping pair's slip direction until its slip turns by more than this [rad] (a quasi-Newton step: the converged traction is on the cone along the slip whatever it is)", NULL, c->slipAngleTolerance, &c->slipAngleTolerance, NULL));
+  PetscCall(PetscOptionsReal("-contact_slip_stiffness_ratio", "Coulomb friction: K_c takes a slipping pair's new stiffness across its slip (mu |t_N| / |slip|) once the one it has is off by more than this factor", NULL, c->slipStiffnessRatio, &c->slipStiffnessRatio, NULL));
   PetscOptionsEnd();
+  PetscCheck(c->slipStiffnessRatio > 1, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_stiffness_ratio must be > 1 (got %g)", (double)c->slipStiffnessRatio);
+  PetscCheck(c->slipAngleTolerance > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_angle_tolerance must be > 0 (got %g)", (double)c->slipAngleTolerance);
+  PetscCheck(!c->frictionSet || law->friction, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_friction needs a frictional law: add -contact_law coulomb (the %s law has no Coulomb limit)", c->lawType);
+  PetscCheck(!law->friction || c->reanchor, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_reclose slide is frictionless sliding: drop it with -contact_law coulomb (a pair that closes again sticks, then slips by friction)");
+  PetscCheck(c->frictionDefault >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_friction must be >= 0 (got %g)", (double)c->frictionDefault);
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
   PetscCheck(!set || c->activationGap >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_activation_gap must be >= 0 (got %g)", (double)c->activationGap);
   PetscCheck(!law->strict || c->augment, c->mesh->comm, PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
@@ -321,6 +332,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
     c->pairPart[p][1] = partB;
     {
       PetscReal Ea = m->materials.mat[m->partMaterial[partA]].E, Eb = m->materials.mat[m->partMaterial[partB]].E, factor = c->penaltyFactor;
+      PetscBool set;
       char      opt[BOLTROM_NAME_LEN + 48];
       PetscCall(PetscSNPrintf(opt, sizeof(opt), "-contact_%s_penalty_factor", c->pairName[p]));
       PetscOptionsBegin(m->comm, NULL, "Contact pair", "boltrom");
@@ -328,6 +340,13 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
       PetscOptionsEnd();
       PetscCheck(factor > 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be > 0 (got %g)", opt, (double)factor);
       c->epsN[p] = c->epsT[p] = factor * PetscMin(Ea, Eb);
+      c->friction[p] = c->frictionDefault;
+      PetscCall(PetscSNPrintf(opt, sizeof(opt), "-contact_%s_friction", c->pairName[p]));
+      PetscOptionsBegin(m->comm, NULL, "Contact pair", "boltrom");
+      PetscCall(PetscOptionsReal(opt, "Coulomb friction coefficient of this pair (-contact_law coulomb)", NULL, c->friction[p], &c->friction[p], &set));
+      PetscOptionsEnd();
+      PetscCheck(!set || c->law.friction, m->comm, PETSC_ERR_USER_INPUT, "%s needs a frictional law: add -contact_law coulomb", opt);
+      PetscCheck(c->friction[p] >= 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be >= 0 (got %g)", opt, (double)c->friction[p]);
       /* stick law: the opening band in traction is that of the default penalty (200 E/m) at the
          activation gap, whatever the penalty: scaled with eps_N, a stiff penalty kept every point
          closed. The strict law has none. */
@@ -521,16 +540,17 @@ PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *c, Mat *Kc)
 }
 
 /* Element e's 24x24 penalty matrix over its active points, in the set's quadrature, without the
-   tangential penalty at released points (the Gauss points' is computed as it always was, so
+   tangential penalty at released points (but, where friction makes them slip, a stiffness across
+   their slip directions: slipDir, 4 values a point, the direction and the stiffness) (the Gauss points' is computed as it always was, so
    that the stick law's results keep their bits). */
-PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *c, PetscInt e, PetscReal epsN, PetscReal epsT, const PetscBool active[], const PetscBool released[], PetscReal Ke[576])
+PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *c, PetscInt e, PetscReal epsN, PetscReal epsT, const PetscBool active[], const PetscBool released[], const PetscReal slipDir[], PetscReal Ke[576])
 {
   PetscBool anyReleased = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   for (PetscInt q = 0; q < 4; q++) anyReleased = (PetscBool)(anyReleased || released[q]);
   if (c->quadrature == BOLT_QUADRATURE_GAUSS && !anyReleased) PetscCall(QuadPairPenaltyStiffnessActive(c->elem[e].Xa, epsN, epsT, active, Ke));
-  else PetscCall(QuadPairPenaltyStiffnessPoints(&c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e], epsN, epsT, active, released, Ke));
+  else PetscCall(QuadPairPenaltyStiffnessPoints(&c->gpN[16 * e], &c->gpW[4 * e], &c->gpNormal[12 * e], epsN, epsT, active, released, slipDir, Ke));
   PetscFunctionReturn(0);
 }
 

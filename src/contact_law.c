@@ -41,6 +41,19 @@ static PetscErrorCode BoltContactLawCreate_Strict(BoltContactLaw *law)
   PetscFunctionReturn(0);
 }
 
+/* coulomb: the strict law's normal contact with Coulomb friction at every closed node pair. A
+   closed pair sticks (its tangential gap held by the penalty and its multiplier) while its
+   tangential traction is inside the cone mu |t_N|, and slips on the cone otherwise: a slipping
+   pair has no tangential penalty, and its tangential traction mu |t_N| along its slip over the
+   step is a force the loop updates after every solve (docs/model.md, friction). */
+static PetscErrorCode BoltContactLawCreate_Coulomb(BoltContactLaw *law)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactLawCreate_Strict(law));
+  law->friction = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltContactLawRegister(const char name[], PetscErrorCode (*create)(BoltContactLaw *))
 {
   PetscFunctionBeginUser;
@@ -63,6 +76,7 @@ PetscErrorCode BoltContactLawRegisterAll(void)
   BoltContactLawRegistered = PETSC_TRUE;
   PetscCall(BoltContactLawRegister("strict", BoltContactLawCreate_Strict));
   PetscCall(BoltContactLawRegister("stick", BoltContactLawCreate_Stick));
+  PetscCall(BoltContactLawRegister("coulomb", BoltContactLawCreate_Coulomb));
   PetscCall(PetscRegisterFinalize(BoltContactLawFinalize));
   PetscFunctionReturn(0);
 }

@@ -29,8 +29,10 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
   }
   PetscCall(PetscCalloc2(12 * ne + 1, &s->lambda, 12 * ne + 1, &s->gap));
   PetscCall(PetscCalloc2(12 * ne + 1, &s->anchor, 12 * ne + 1, &s->lambdaForce));
-  PetscCall(PetscCalloc2(12 * ne + 1, &s->lambdaPrev, 4 * ne + 1, &s->closedSteps));
+  PetscCall(PetscCalloc4(12 * ne + 1, &s->lambdaPrev, 4 * ne + 1, &s->closedSteps, 12 * ne + 1, &s->slipStart, 16 * ne + 1, &s->slipDir));
   s->reanchor = c->reanchor;
+  s->slipAngleTolerance = c->slipAngleTolerance;
+  s->slipStiffnessRatio = c->slipStiffnessRatio;
   PetscCall(PetscMalloc4(4 * ne + 1, &s->active, 4 * ne + 1, &s->activeOld, 4 * ne + 1, &s->activeOlder, 4 * ne + 1, &s->released));
   PetscCall(PetscMalloc1(ne + 1, &s->dirty));
   PetscCall(BoltContactStateReset(s));
@@ -46,7 +48,7 @@ PetscErrorCode BoltContactStateDestroy(BoltContactState **sp)
   if (!s) PetscFunctionReturn(0);
   PetscCall(PetscFree2(s->lambda, s->gap));
   PetscCall(PetscFree2(s->anchor, s->lambdaForce));
-  PetscCall(PetscFree2(s->lambdaPrev, s->closedSteps));
+  PetscCall(PetscFree4(s->lambdaPrev, s->closedSteps, s->slipStart, s->slipDir));
   PetscCall(PetscFree4(s->active, s->activeOld, s->activeOlder, s->released));
   PetscCall(PetscFree(s->dirty));
   PetscCall(PetscFree(s->Ke));
@@ -117,7 +119,8 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
 
 /* Element e's state as BOLT_CONTACT_PACK values (checkpoints): multipliers (12), gaps (12), the
    active flags of the last three outer iterations and the released flags (4 each), anchors (12),
-   the multipliers of the step before (12) and the closed steps in a row (4). */
+   the multipliers of the step before (12), the closed steps in a row (4) and the raw gaps at the
+   start of the step (12) and the slip directions and stiffnesses (16, friction). */
 void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
 {
   PetscInt k = 0;
@@ -131,6 +134,8 @@ void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
   for (PetscInt i = 0; i < 12; i++) buf[k++] = s->anchor[12 * e + i];
   for (PetscInt i = 0; i < 12; i++) buf[k++] = s->lambdaPrev[12 * e + i];
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->closedSteps[4 * e + i];
+  for (PetscInt i = 0; i < 12; i++) buf[k++] = s->slipStart[12 * e + i];
+  for (PetscInt i = 0; i < 16; i++) buf[k++] = s->slipDir[16 * e + i];
 }
 
 /* The inverse of BoltContactStatePack; the element is due for a stiffness update. Not collective:
@@ -149,6 +154,8 @@ void BoltContactStateUnpack(BoltContactState *s, PetscInt e, const PetscReal buf
   }
   for (PetscInt i = 0; i < 12; i++) s->lambdaPrev[12 * e + i] = buf[52 + i];
   for (PetscInt i = 0; i < 4; i++) s->closedSteps[4 * e + i] = (PetscInt)buf[64 + i];
+  for (PetscInt i = 0; i < 12; i++) s->slipStart[12 * e + i] = buf[68 + i];
+  for (PetscInt i = 0; i < 16; i++) s->slipDir[16 * e + i] = buf[80 + i];
   s->dirty[e]    = PETSC_TRUE;
   s->KcAssembled = PETSC_FALSE;
 }
@@ -167,6 +174,8 @@ PetscErrorCode BoltContactStateReset(BoltContactState *s)
   PetscCall(PetscArrayzero(s->lambda, 12 * c->nelem));
   PetscCall(PetscArrayzero(s->gap, 12 * c->nelem));
   PetscCall(PetscArrayzero(s->anchor, 12 * c->nelem));
+  PetscCall(PetscArrayzero(s->slipStart, 12 * c->nelem));
+  s->dissipated = 0;
   s->anchored = PETSC_FALSE;
   s->nactive = c->ngpGlobal;
   BoltContactStateChanged(s);
@@ -182,6 +191,41 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *s)
   PetscCall(BoltContactSetGapsOf(c, s->gap));
   BoltContactStateAnchorGaps(s, s->gap);
   PetscFunctionReturn(0);
+}
+
+/* A pair's slip over the current step: the tangential part of its raw gap (u_b - u_a) less that
+   at the start of the step. */
+static void BoltContactStateSlip(const BoltContactState *s, PetscInt gp, PetscReal slip[3])
+{
+  const PetscReal *n = &s->set->gpNormal[3 * gp], *g = &s->gap[3 * gp], *a = &s->anchor[3 * gp], *g0 = &s->slipStart[3 * gp];
+  PetscReal        d[3], dn;
+
+  for (PetscInt k = 0; k < 3; k++) d[k] = g[k] + a[k] - g0[k];
+  dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+  for (PetscInt k = 0; k < 3; k++) slip[k] = d[k] - dn * n[k];
+}
+
+/* v less its parts along n and d: the directions in which a slipping pair is held. */
+static inline void BoltAcross(const PetscReal n[3], const PetscReal d[3], const PetscReal v[3], PetscReal out[3])
+{
+  const PetscReal vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2], vd = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
+  for (PetscInt k = 0; k < 3; k++) out[k] = v[k] - vn * n[k] - vd * d[k];
+}
+
+/* The trial traction of an active point: the law's, and at a pair slipping by friction the
+   linearised change of its friction traction with its slip over the step, K_c's stiffness across
+   the slip direction. */
+static void BoltContactStateTrial(const BoltContactState *s, PetscInt gp, PetscInt pair, PetscReal t[3])
+{
+  const PetscReal *g = &s->gap[3 * gp], *n = &s->set->gpNormal[3 * gp];
+
+  s->law.traction(&s->lambda[3 * gp], g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+  if (s->law.friction && s->released[gp]) {
+    PetscReal slip[3], across[3];
+    BoltContactStateSlip(s, gp, slip);
+    BoltAcross(n, &s->slipDir[4 * gp], slip, across);
+    for (PetscInt k = 0; k < 3; k++) t[k] += s->slipDir[4 * gp + 3] * across[k];
+  }
 }
 
 /* One augmentation: lambda <- trial traction at active points, 0 elsewhere. Returns the
@@ -214,7 +258,7 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
       PetscReal       *lam = &s->lambda[3 * gp], t[3] = {0, 0, 0};
       const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
       if (update) {
-        if (s->active[gp] && s->augment) s->law.traction(lam, g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+        if (s->active[gp] && s->augment) BoltContactStateTrial(s, gp, pair, t);
         for (PetscInt k = 0; k < 3; k++) {
           change += PetscSqr(t[k] - lam[k]);
           size += PetscSqr(t[k]);
@@ -299,6 +343,34 @@ void BoltContactStateExtrapolate(BoltContactState *s)
   BoltContactStateChanged(s);
 }
 
+/* Coulomb, after a converged solve: the energy dissipated by the slipping pairs over the step
+   (traction along the slip times the pair's area; with count), and the raw gaps from which the
+   next step's slip is measured. */
+void BoltContactStateStartSlip(BoltContactState *s, PetscBool count)
+{
+  BoltContactSet *c = s->set;
+
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    if (count && s->active[gp] && s->released[gp]) {
+      const PetscReal *t = &s->lambda[3 * gp];
+      PetscReal        slip[3], across[3], work = 0;
+      BoltContactStateSlip(s, gp, slip);
+      BoltAcross(&c->gpNormal[3 * gp], &s->slipDir[4 * gp], slip, across); /* the traction is lambda + K_c's part across d */
+      for (PetscInt k = 0; k < 3; k++) work += (t[k] + s->slipDir[4 * gp + 3] * across[k]) * slip[k];
+      s->dissipated += c->gpW[gp] * work;
+    }
+    for (PetscInt k = 3 * gp; k < 3 * gp + 3; k++) s->slipStart[k] = s->gap[k] + s->anchor[k];
+  }
+}
+
+/* The energy the slipping pairs dissipated so far [J], over all ranks. */
+PetscErrorCode BoltContactStateDissipated(BoltContactState *s, PetscReal *energy)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MPIU_Allreduce(&s->dissipated, energy, 1, MPIU_REAL, MPI_SUM, s->set->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
 /* After a converged time step: count the points that ended it closed. */
 void BoltContactStateEndStep(BoltContactState *s)
 {
@@ -325,6 +397,11 @@ const PetscReal *BoltContactStateForceMultipliers(BoltContactState *s)
       const PetscInt  gp = 4 * e + q;
       const PetscReal eT = s->active[gp] ? BoltContactStateEpsT(s, gp, pair) : 0;
       for (PetscInt k = 0; k < 3; k++) s->lambdaForce[3 * gp + k] = s->lambda[3 * gp + k] - eT * s->anchor[3 * gp + k];
+      if (s->law.friction && s->active[gp] && s->released[gp]) { /* K_c acts across d on the slip since the step's start */
+        PetscReal across[3];
+        BoltAcross(&c->gpNormal[3 * gp], &s->slipDir[4 * gp], &s->slipStart[3 * gp], across);
+        for (PetscInt k = 0; k < 3; k++) s->lambdaForce[3 * gp + k] -= s->slipDir[4 * gp + 3] * across[k];
+      }
     }
   }
   return s->lambdaForce;
@@ -345,7 +422,7 @@ PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpe
       PetscReal *t  = &c->tau[3 * gp];
       if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
       else if (s->augment) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
-      else s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+      else BoltContactStateTrial(s, gp, pair, t);
     }
   }
   if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tnOpen));
@@ -357,6 +434,73 @@ PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpe
   PetscFunctionReturn(0);
 }
 
+/* Coulomb, a pair that stays closed, after an augmentation (lambda holds its trial traction):
+   - sticking, with its tangential traction beyond the cone mu |t_N|: it slips, its traction on
+     the cone along the trial's tangential part; K_c holds it across that direction with the
+     tangential penalty until its slip is known;
+   - slipping, but not forward along its slip direction over the step: it sticks where it was at
+     the start of the step;
+   - slipping on: its traction goes on the cone along its slip over the step, mu |t_N| s/|s|; K_c
+     takes the derivative of that traction, mu |t_N| / |s| across s (a Newton step), when the
+     direction has turned by more than the angle tolerance or the stiffness is off by more than
+     a factor two (else the last one: the traction is updated all the same).
+   *moved is the tangential traction's change over |t_N|. Returns whether K_c changed. */
+static PetscBool BoltContactStateStickSlip(BoltContactState *s, PetscInt gp, PetscInt pair, PetscReal *moved)
+{
+  const PetscReal *n  = &s->set->gpNormal[3 * gp];
+  PetscReal       *t  = &s->lambda[3 * gp], *d = &s->slipDir[4 * gp];
+  const PetscReal  tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], bound = s->set->friction[pair] * PetscMax(-tn, 0.0);
+  PetscReal        tt[3], slip[3], len, ls;
+
+  *moved = 0;
+  for (PetscInt k = 0; k < 3; k++) tt[k] = t[k] - tn * n[k];
+  len = PetscSqrtReal(tt[0] * tt[0] + tt[1] * tt[1] + tt[2] * tt[2]);
+  if (!s->released[gp]) {
+    if (len <= bound * (1 + BOLT_FRICTION_MARGIN)) return PETSC_FALSE;
+    for (PetscInt k = 0; k < 3; k++) {
+      d[k] = tt[k] / len;
+      t[k] = tn * n[k] + bound * d[k];
+    }
+    d[3]            = s->epsT[pair];
+    s->released[gp] = PETSC_TRUE;
+    return PETSC_TRUE;
+  }
+  BoltContactStateSlip(s, gp, slip);
+  ls = PetscSqrtReal(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
+  if (slip[0] * d[0] + slip[1] * d[1] + slip[2] * d[2] <= 0 || tn >= 0 || ls == 0) {
+    const PetscReal *g0  = &s->slipStart[3 * gp];
+    PetscReal       *a   = &s->anchor[3 * gp], *g = &s->gap[3 * gp];
+    const PetscReal  g0n = g0[0] * n[0] + g0[1] * n[1] + g0[2] * n[2];
+    for (PetscInt k = 0; k < 3; k++) {
+      const PetscReal raw = g[k] + a[k];
+      a[k]                = g0[k] - g0n * n[k];
+      g[k]                = raw - a[k];
+    }
+    s->anchored     = PETSC_TRUE;
+    s->released[gp] = PETSC_FALSE;
+    return PETSC_TRUE;
+  }
+  {
+    const PetscReal ka     = 2 * bound / ls;
+    const PetscReal cosine = (slip[0] * d[0] + slip[1] * d[1] + slip[2] * d[2]) / ls;
+    const PetscBool turn   = (PetscBool)(cosine < 1 - 0.5 * PetscSqr(s->slipAngleTolerance) || ka > s->slipStiffnessRatio * d[3] || ka * s->slipStiffnessRatio < d[3]);
+    PetscReal       across[3];
+    if (turn) {
+      for (PetscInt k = 0; k < 3; k++) d[k] = slip[k] / ls;
+      d[3] = ka;
+    }
+    /* the multiplier that, with K_c's stiffness across d acting on the slip, gives the cone's
+       traction at this slip: the next solve is a (quasi-)Newton step on the friction law */
+    BoltAcross(n, d, slip, across);
+    for (PetscInt k = 0; k < 3; k++) {
+      const PetscReal v = bound * slip[k] / ls;
+      *moved            = PetscMax(*moved, PetscAbsReal(v - tt[k]) / -tn);
+      t[k]              = tn * n[k] + v - d[3] * across[k];
+    }
+    return turn;
+  }
+}
+
 /* New active set from the opening test's tractions (BoltContactStateOpenTraction, or a model's
    own) and the gaps; counts the points that changed (global) and tells whether the set equals
    the one two outer iterations back (cycling between two sets). */
@@ -364,6 +508,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
 {
   BoltContactSet *c = s->set;
   PetscInt        loc[3] = {0, 0, 0}, glob[3];
+  PetscReal       fric   = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
@@ -384,13 +529,24 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
       }
       s->activeOlder[gp] = s->activeOld[gp];
       s->activeOld[gp]   = s->active[gp];
+      if (s->law.friction && now && s->active[gp] && !(s->mayChange && !s->mayChange[gp])) {
+        PetscReal moved;
+        if (BoltContactStateStickSlip(s, gp, pair, &moved)) {
+          loc[0]++;
+          loc[2]++; /* a change of stick and slip is not a two-set cycle of the open and closed sets */
+          s->dirty[e] = PETSC_TRUE;
+        }
+        fric = PetscMax(fric, moved);
+      }
       /* a sticking pair that opened and now closes to slide is in a new state, not a cycle */
       if (s->law.strict && now && !s->active[gp] && !s->released[gp]) loc[2]++;
       if (now != s->active[gp]) {
         loc[0]++;
         s->dirty[e] = PETSC_TRUE;
-        if (!now) s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
-        else BoltContactStateReclose(s, gp);
+        if (!now) {
+          s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
+          if (s->law.friction) s->released[gp] = PETSC_FALSE; /* it closes again sticking */
+        } else BoltContactStateReclose(s, gp);
       }
       s->active[gp] = now;
       if (now) loc[1]++;
@@ -398,6 +554,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
     }
   }
   PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
+  if (s->law.friction) PetscCall(MPIU_Allreduce(&fric, &s->frictionChange, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   *nchanged  = glob[0];
   s->nactive = glob[1];
   if (glob[0]) BoltContactStateChanged(s);
@@ -468,7 +625,7 @@ PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
   }
   for (PetscInt e = 0; e < c->nelem; e++) {
     if (!s->dirty[e]) continue;
-    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], &s->released[4 * e], &s->Ke[576 * e]));
+    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], &s->released[4 * e], BoltContactStateSlipDirs(s, e), &s->Ke[576 * e]));
     s->dirty[e] = PETSC_FALSE;
     changed++;
   }

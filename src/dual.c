@@ -306,6 +306,7 @@ PetscErrorCode BoltDualCreate(BoltOperator *op, BoltDual **dp)
   d->maxInner       = 5000;
   d->tolLambda      = 1e-4;
   d->tolPenetration = 1e-9;
+  d->tolFriction    = 1e-9;
   d->warmStart      = PETSC_TRUE;
   d->extrapolate    = PETSC_TRUE;
   d->closeCycles    = PETSC_TRUE;
@@ -326,6 +327,7 @@ PetscErrorCode BoltDualSetFromOptions(BoltDual *d)
   PetscCall(PetscOptionsInt("-contact_max_inner", "Inner (augmentation) iterations per outer iteration (strict law: solves per step)", NULL, d->maxInner, &d->maxInner, NULL));
   PetscCall(PetscOptionsReal("-contact_tol_lambda", "Tolerance on the relative change of the multipliers", NULL, d->tolLambda, &d->tolLambda, NULL));
   PetscCall(PetscOptionsReal("-contact_tol_penetration", "Tolerance on the largest penetration of an active point [m] (strict law: on the largest gap of a closed pair; default 1e-9 x the shortest contact-face edge; stick law: 1e-9 m)", NULL, d->tolPenetration, &d->tolPenetration, &d->tolPenetrationSet));
+  PetscCall(PetscOptionsReal("-contact_tol_friction", "Coulomb friction: tolerance on the largest change of a slipping pair's tangential traction after a solve, relative to its normal traction", NULL, d->tolFriction, &d->tolFriction, NULL));
   PetscCall(PetscOptionsBool("-contact_warm_start", "Start each outer iteration from the last multipliers (false: from zero, as the paper)", NULL, d->warmStart, &d->warmStart, NULL));
   PetscCall(PetscOptionsBool("-contact_cycle_close", "Anti-cycling: when the active set cycles between two sets (its toggling points are then closed) or has not settled in half of -contact_max_outer, points may only close for the rest of the step; false: a cycle stops the run (or warns, with -contact_continue)", NULL, d->closeCycles, &d->closeCycles, NULL));
   PetscCall(PetscOptionsBool("-contact_extrapolate", "Strict law, time steps: start each step's loop from the multipliers of the points closed over the last two steps extrapolated linearly in time (false: from the last step's)", NULL, d->extrapolate, &d->extrapolate, NULL));
@@ -478,7 +480,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     if (d->keepActiveSet && !d->dynamic) nchanged = 0, cycling = PETSC_FALSE;
     else PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, sets, solves, nchanged, cycling));
-    if (!nchanged && viol <= d->tolPenetration) break;
+    if (!nchanged && viol <= d->tolPenetration && (!s->law.friction || s->frictionChange <= d->tolFriction)) break;
     if (nchanged) {
       sets++;
       refactor = PETSC_TRUE;
@@ -501,6 +503,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     d->worstProduct     = PetscMax(d->worstProduct, prod);
   }
   if (d->dynamic) BoltContactStateEndStep(s);
+  if (s->law.friction) BoltContactStateStartSlip(s, d->dynamic);
   PetscCall(BoltDualCount(d, sets, solves, nouter, ninner));
   PetscFunctionReturn(0);
 }

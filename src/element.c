@@ -428,7 +428,7 @@ PetscErrorCode QuadNodalPoints(const PetscReal Xa[12], PetscReal N[16], PetscRea
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode QuadPairPenaltyStiffnessPoints(const PetscReal N[16], const PetscReal w[4], const PetscReal n[12], PetscReal epsN, PetscReal epsT, const PetscBool active[4], const PetscBool released[4], PetscReal Kc[576])
+PetscErrorCode QuadPairPenaltyStiffnessPoints(const PetscReal N[16], const PetscReal w[4], const PetscReal n[12], PetscReal epsN, PetscReal epsT, const PetscBool active[4], const PetscBool released[4], const PetscReal slipDir[16], PetscReal Kc[576])
 {
   PetscReal M[144] = {0}, P[9];
 
@@ -440,6 +440,11 @@ PetscErrorCode QuadPairPenaltyStiffnessPoints(const PetscReal N[16], const Petsc
     if (!active[q]) continue;
     for (PetscInt k = 0; k < 3; k++)
       for (PetscInt l = 0; l < 3; l++) P[3 * k + l] = (epsN - et) * nq[k] * nq[l] + (k == l ? et : 0);
+    if (released && released[q] && slipDir) { /* a pair slipping by friction along d: stiffness slipDir[3] across d */
+      const PetscReal *d = &slipDir[4 * q], ka = slipDir[4 * q + 3];
+      for (PetscInt k = 0; k < 3; k++)
+        for (PetscInt l = 0; l < 3; l++) P[3 * k + l] += ka * ((k == l ? 1 : 0) - nq[k] * nq[l] - d[k] * d[l]);
+    }
     for (PetscInt a = 0; a < 4; a++)
       for (PetscInt b = 0; b < 4; b++) {
         const PetscReal f = Nq[a] * Nq[b] * w[q];

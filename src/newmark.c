@@ -27,7 +27,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
 PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
 {
   MPI_Comm    comm = nm->op->comm;
-  const char *hist[] = {"step", "sine", "BoltLoadHistory", "BOLT_LOAD_", NULL};
+  const char *hist[] = {"step", "sine", "ramp", "BoltLoadHistory", "BOLT_LOAD_", NULL};
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Time integration", "boltrom");
@@ -35,8 +35,9 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsReal("-ts_end", "End time [s]", NULL, nm->tEnd, &nm->tEnd, NULL));
   PetscCall(PetscOptionsReal("-newmark_beta", "Newmark beta", NULL, nm->beta, &nm->beta, NULL));
   PetscCall(PetscOptionsReal("-newmark_gamma", "Newmark gamma", NULL, nm->gamma, &nm->gamma, NULL));
-  PetscCall(PetscOptionsEnum("-load_history", "Time history of the external load: step (on from t > 0) or sine", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
+  PetscCall(PetscOptionsEnum("-load_history", "Time history of the external load: step (on from t > 0), sine, or ramp (rising linearly to the full load at -load_ramp_time, then held)", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
   PetscCall(PetscOptionsReal("-load_frequency", "Frequency of the sine load [Hz]", NULL, nm->frequency, &nm->frequency, NULL));
+  PetscCall(PetscOptionsReal("-load_ramp_time", "Time at which the ramp load reaches its full value [s] (default: -ts_end)", NULL, nm->rampTime, &nm->rampTime, NULL));
   PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload (added after the preload is calibrated alone)", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
   PetscCall(PetscOptionsBool("-preload_calibrate", "Scale the preload layer forces so that the bolt clamps with -preload_force (the layer between them is elastic)", NULL, nm->calibratePreload, &nm->calibratePreload, NULL));
   PetscCall(PetscOptionsInt("-snapshot_every", "Keep the displacement field every this many steps for ParaView (0: none)", NULL, nm->snapshotEvery, &nm->snapshotEvery, NULL));
@@ -52,6 +53,7 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCheck(nm->tEnd >= nm->dt, comm, PETSC_ERR_USER_INPUT, "-ts_end (%g) must be at least one time step -ts_dt (%g)", (double)nm->tEnd, (double)nm->dt);
   PetscCheck(nm->beta > 0 && nm->gamma >= 0.5, comm, PETSC_ERR_USER_INPUT, "Newmark needs beta > 0 and gamma >= 1/2 (got %g, %g)", (double)nm->beta, (double)nm->gamma);
   PetscCheck(nm->snapshotEvery >= 0, comm, PETSC_ERR_USER_INPUT, "-snapshot_every must be >= 0");
+  PetscCheck(nm->rampTime >= 0, comm, PETSC_ERR_USER_INPUT, "-load_ramp_time must be >= 0 (got %g; 0: -ts_end)", (double)nm->rampTime);
   PetscFunctionReturn(0);
 }
 
@@ -73,7 +75,7 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscCall(VecDuplicate(nm->q, &nm->acc));
   PetscCall(VecDuplicate(nm->q, &nm->rhs));
   PetscCall(VecDuplicate(nm->q, &nm->work));
-  PetscCall(PetscCalloc3(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy));
+  PetscCall(PetscCalloc5(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy, nm->nsteps + 1, &nm->slipping, nm->nsteps + 1, &nm->dissipated));
   if (nm->snapshotEvery > 0) {
     PetscInt n = nm->nsteps / nm->snapshotEvery + 1;
     PetscCall(PetscCalloc1(n, &nm->snapTime));
@@ -118,6 +120,7 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
 static PetscReal BoltLoadAmplitude(BoltNewmark *nm, PetscReal t)
 {
   if (nm->history == BOLT_LOAD_SINE) return PetscSinReal(2 * PETSC_PI * nm->frequency * t);
+  if (nm->history == BOLT_LOAD_RAMP) return PetscMax(0.0, PetscMin(1.0, t / (nm->rampTime > 0 ? nm->rampTime : nm->tEnd)));
   return t > 0 ? 1.0 : 0.0;
 }
 
@@ -201,6 +204,12 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     }
     PetscCall(op->ops.probe(op, nm->q, &nm->probeValue[n]));
     PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n]));
+    if (op->state->law.friction) {
+      PetscInt nslip;
+      PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
+      nm->slipping[n] = (PetscReal)nslip;
+      PetscCall(BoltContactStateDissipated(op->state, &nm->dissipated[n]));
+    }
     if (nm->monitor) PetscCall(PetscPrintf(comm, "%s step %5" PetscInt_FMT " t %.6e outer %2" PetscInt_FMT " inner %3" PetscInt_FMT " active %" PetscInt_FMT "/%" PetscInt_FMT " energy %.10e probe %.6e\n", op->name, n, (double)t, nout, nin, op->state->nactive, op->contact->ngpGlobal, (double)nm->energy[n], (double)nm->probeValue[n]));
     if (n % PetscMax(1, nm->nsteps / 10) == 0 && n < nm->nsteps) { /* progress of a long run, every tenth of it */
       PetscLogDouble tp;
@@ -252,7 +261,7 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   PetscCall(VecDestroy(&nm->acc));
   PetscCall(VecDestroy(&nm->rhs));
   PetscCall(VecDestroy(&nm->work));
-  PetscCall(PetscFree3(nm->probeTime, nm->probeValue, nm->energy));
+  PetscCall(PetscFree5(nm->probeTime, nm->probeValue, nm->energy, nm->slipping, nm->dissipated));
   if (nm->snap) PetscCall(VecDestroyVecs(nm->nsteps / nm->snapshotEvery + 1, &nm->snap));
   PetscCall(PetscFree(nm->snapTime));
   PetscCall(PetscFree(*nmp));

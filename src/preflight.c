@@ -17,9 +17,9 @@ static const char *const boltLateOptions[] = {
   NULL};
 /* Read by PetscFinalize, after the final check. */
 static const char *const boltExitOptions[] = {"options_left", NULL};
-/* Read while the model is set up: the per-pair penalties (the mesh names the pairs) and the
+/* Read while the model is set up: the per-pair penalties and friction coefficients (the mesh names the pairs) and the
    options of DMPlex's mesh reader. */
-static const char *const boltSetUpOptions[] = {"contact_*_penalty_factor", "dm_plex_*", NULL};
+static const char *const boltSetUpOptions[] = {"contact_*_penalty_factor", "contact_*_friction", "dm_plex_*", NULL};
 
 /* name matches pattern ('*': any run of characters), ignoring case as PETSc's options do */
 static PetscErrorCode BoltGlobMatch(const char pattern[], const char name[], PetscBool *match)

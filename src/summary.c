@@ -245,12 +245,20 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
     PetscCall(BoltOutputSeries(&h5, "/fom", "time", fom->nsteps + 1, fom->probeTime));
     PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fom->nsteps + 1, fom->probeValue));
     PetscCall(BoltOutputSeries(&h5, "/fom", "energy", fom->nsteps + 1, fom->energy));
+    if (fom->op->state->law.friction) {
+      PetscCall(BoltOutputSeries(&h5, "/fom", "slipping", fom->nsteps + 1, fom->slipping));
+      PetscCall(BoltOutputSeries(&h5, "/fom", "dissipated", fom->nsteps + 1, fom->dissipated));
+    }
     if (fom->nsnap) PetscCall(BoltOutputSnapshots(&h5, mesh, fom->nsnap, fom->snap, fom->snapTime));
   }
   if (rom) {
     PetscCall(BoltOutputSeries(&h5, "/rom", "time", rom->nsteps + 1, rom->probeTime));
     PetscCall(BoltOutputSeries(&h5, "/rom", "probe", rom->nsteps + 1, rom->probeValue));
     PetscCall(BoltOutputSeries(&h5, "/rom", "energy", rom->nsteps + 1, rom->energy));
+    if (rom->op->state->law.friction) {
+      PetscCall(BoltOutputSeries(&h5, "/rom", "slipping", rom->nsteps + 1, rom->slipping));
+      PetscCall(BoltOutputSeries(&h5, "/rom", "dissipated", rom->nsteps + 1, rom->dissipated));
+    }
   }
   if (s->x) {
     PetscCall(BoltOutputVertexField(&h5, mesh, s->x, "x"));

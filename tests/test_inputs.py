@@ -198,7 +198,7 @@ def test_probe_on_clamped_node(beam, tmp_path):
 
 
 @pytest.mark.parametrize("args, words", [
-    (["-contact_law", "coulomb"], ["contact law", "coulomb"]),
+    (["-contact_law", "tresca"], ["contact law", "tresca"]),
     (["-contact_inner", "newton"], ["-contact_inner", "newton"]),
 ])
 def test_unknown_registered_type(joint_small, tmp_path, args, words):

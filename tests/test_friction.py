@@ -1,0 +1,105 @@
+"""Coulomb friction (-contact_law coulomb): a block pressed on another by N (the preload's
+calibrated force) under a tangential load at its top, against the analytic answers of a rigid
+block with Coulomb friction; the law with an unreachable cone against the strict law; bad input."""
+import h5py
+import numpy as np
+import pytest
+
+from conftest import ROOT, make_mesh, run_boltrom, run_summary
+from test_inputs import expect_error
+
+MU, N = 0.1, 1000.0  # friction coefficient, pressing force [N]
+# the upper block pressed by N through its top face (the lower layer is the clamped face, which
+# takes nothing); the tangential load on the top face along x; no mass-proportional damping (it
+# would act on the sliding block), a little stiffness-proportional damping for the ringing
+BLOCK = ["-fom", "-rom", "false", "-static", "false", "-modal_nev", "0", "-contact_law", "coulomb",
+         "-contact_friction", str(MU), "-preload_lower_group", "clamp", "-preload_upper_group", "top",
+         "-preload_force", str(N), "-preload_axis", "0,0,1", "-load_group", "top", "-load_direction", "1,0,0",
+         "-probe_group", "top", "-probe_component", "0", "-rayleigh_alpha", "0", "-rayleigh_beta", "4e-6"]
+
+
+@pytest.fixture(scope="module")
+def blocks(meshdir):
+    return make_mesh("blocks", meshdir / "blocks.msh", 1)[0]
+
+
+def history(folder):
+    with h5py.File(folder / "joint.h5") as f:
+        g = f["fom"]
+        return {k: np.array(g[k]).ravel() for k in ("time", "probe", "slipping", "dissipated")}
+
+
+def test_block_sticks_until_mu_n_then_slides_as_a_rigid_body(blocks, tmp_path):
+    """A tangential ramp T = F t / t_end: every pair slips once T reaches mu N (within 1 %, the
+    ramp's step is 0.5 % of mu N); from then on the block slides as a rigid body under T - mu N,
+    x - x* = F / (6 m t_end) (t - t*)^3, and friction dissipates mu N times the slide (1 %)."""
+    F, t_end = 2 * MU * N, 2e-3
+    s = run_summary(["-mesh", blocks] + BLOCK + ["-load_force", str(F), "-load_history", "ramp", "-ts_dt", "5e-6",
+                                                 "-ts_end", str(t_end), "-output_dir", tmp_path], tmp_path)
+    assert s["preload"]["normal_force_per_pair"]["upper_lower"] == pytest.approx(-N, rel=1e-9)
+    h = history(tmp_path)
+    points = s["fom"]["contact_points"]
+    onset = int(np.argmax(h["slipping"] >= points))
+    assert h["slipping"][onset] == points
+    assert F * h["time"][onset] / t_end == pytest.approx(MU * N, rel=0.01)
+    m = s["mass_per_part"]["upper"]
+    t_star = MU * N * t_end / F
+    slide = h["probe"][-1] - h["probe"][onset]
+    rigid = F / (6 * m * t_end) * ((t_end - t_star) ** 3 - (h["time"][onset] - t_star) ** 3)
+    assert slide == pytest.approx(rigid, rel=0.01)
+    assert h["dissipated"][-1] - h["dissipated"][onset] == pytest.approx(MU * N * slide, rel=0.01)
+    assert s["fom"]["failures"] == 0
+
+
+def test_cyclic_load_dissipates_four_mu_n_times_the_slip_amplitude(blocks, tmp_path):
+    """T = 2 mu N sin(2 pi 500 t): between two turning points of the same side the friction
+    dissipates 4 mu N A, A half the distance between the turning points (1 %); the block creeps,
+    so cycles are taken from turning point to turning point."""
+    s = run_summary(["-mesh", blocks] + BLOCK + ["-load_force", str(2 * MU * N), "-load_history", "sine",
+                                                 "-load_frequency", "500", "-ts_dt", "1e-5", "-ts_end", "6e-3",
+                                                 "-output_dir", tmp_path], tmp_path)
+    h = history(tmp_path)
+    x, d = h["probe"], h["dissipated"]
+    v = np.sign(np.diff(x))
+    turns = np.where(v[1:] != v[:-1])[0] + 1
+    assert len(turns) >= 4
+    for a, b, c in zip(turns[:-2], turns[1:-1], turns[2:]):
+        amplitude = (abs(x[b] - x[a]) + abs(x[c] - x[b])) / 4
+        assert amplitude > 1e-4  # it slides: far above the elastic part (about 2e-6 m)
+        assert d[c] - d[a] == pytest.approx(4 * MU * N * amplitude, rel=0.01)
+    assert s["fom"]["failures"] == 0
+
+
+def test_unreachable_cone_is_the_strict_law(joint_small, tmp_path):
+    """With mu = 1e6 no pair slips, and the history is the strict law's, bit for bit."""
+    mesh, _ = joint_small
+    scene = ["-options_file", str(ROOT / "inputs" / "paper-step.yaml"), "-mesh", mesh, "-rom", "false",
+             "-ts_end", "0.005", "-preload_force", "5000", "-load_force", "300"]
+    probes = {}
+    for law in (["strict"], ["coulomb", "-contact_friction", "1e6"]):
+        d = tmp_path / law[0]
+        s = run_summary(scene + ["-contact_law"] + law + ["-output_dir", d, "-output_name", "run"], d)
+        with h5py.File(d / "run.h5") as f:
+            probes[law[0]] = np.array(f["fom/probe"]).ravel()
+        assert s["fom"]["sliding_points"] == 0
+    assert np.array_equal(probes["strict"], probes["coulomb"])
+
+
+@pytest.mark.parametrize("args, words", [
+    (["-contact_law", "coulomb", "-contact_friction", "-0.2"], ["-contact_friction", ">= 0"]),
+    (["-contact_law", "strict", "-contact_friction", "0.2"], ["-contact_friction", "coulomb"]),
+    (["-contact_law", "stick", "-contact_upper_lower_friction", "0.2"], ["-contact_upper_lower_friction", "coulomb"]),
+    (["-contact_law", "coulomb", "-contact_reclose", "slide"], ["-contact_reclose slide", "coulomb"]),
+])
+def test_bad_friction_input(blocks, tmp_path, args, words):
+    """A negative coefficient, a coefficient for a law without friction, frictionless re-closing
+    with friction: one line, non-zero exit, nothing written."""
+    expect_error(["-mesh", blocks, "-fom", "-rom", "false", "-modal_nev", "0"] + args, tmp_path, *words)
+
+
+def test_non_numeric_friction_is_refused(blocks, tmp_path):
+    proc = run_boltrom(["-mesh", blocks, "-contact_law", "coulomb", "-contact_friction", "high",
+                        "-output_dir", tmp_path / "out"], check=False)
+    assert proc.returncode != 0
+    assert "-contact_friction" in proc.stderr or "high" in proc.stderr
+    assert not (tmp_path / "out").exists()
