@@ -195,7 +195,9 @@ typedef struct {
   PetscReal      *lambdaForce;    /* 3 per point: lambda - epsT anchor, the multipliers that the solve's forces take */
   PetscReal      *lambdaPrev;     /* 3 per point: the multipliers of the converged step before the last (BoltContactStateExtrapolate) */
   PetscInt       *closedSteps;    /* per point: converged steps in a row it ended closed, at most 2 */
-  PetscReal      *slipStart;      /* frictional law, 3 per point: its raw gap (u_b - u_a) at the start of the step */
+  PetscReal      *slipStart;      /* strict laws, 3 per point: its raw gap (u_b - u_a) at the start of the step */
+  PetscReal      *tractionStart;  /* strict laws, 3 per point: its traction at the start of the step */
+  PetscReal       contactWork;    /* strict laws: work of the contact tractions over the converged steps [J] (local) */
   PetscReal       dissipated;     /* frictional law: energy dissipated by slip over the converged steps [J] (local) */
   PetscReal      *slipDir;        /* frictional law, 4 per point: the direction a slipping pair slides along in K_c,
                                      and K_c's stiffness across it (the traction's derivative, mu |t_N| / |slip|) */
@@ -248,7 +250,8 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *, const PetscReal[
 PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
 void           BoltContactStateExtrapolate(BoltContactState *);
 void           BoltContactStateEndStep(BoltContactState *);
-void           BoltContactStateStartSlip(BoltContactState *, PetscBool);
+void           BoltContactStateEndSolve(BoltContactState *, PetscBool);
+PetscErrorCode BoltContactStateContactWork(BoltContactState *, PetscReal *);
 #define BOLT_FRICTION_MARGIN 1e-6 /* a sticking pair slips once its traction is beyond the cone by this fraction */
 PetscErrorCode BoltContactStateDissipated(BoltContactState *, PetscReal *);
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
@@ -262,7 +265,7 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *);
 PetscErrorCode BoltContactStateCountReclosed(BoltContactState *, PetscInt *, PetscInt *);
 PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
 PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
-#define BOLT_CONTACT_PACK 96 /* values per element of BoltContactStatePack */
+#define BOLT_CONTACT_PACK 108 /* values per element of BoltContactStatePack */
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
 PetscErrorCode BoltContactStateDestroy(BoltContactState **);
@@ -428,6 +431,12 @@ PetscErrorCode BoltContactMonitorTension(BoltDual *);
 
 /* ------------------------------------------------------------------ newmark.c */
 typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1, BOLT_LOAD_RAMP = 2 } BoltLoadHistory;
+/* The energy accounting of a Newmark run, per step (rows of BoltNewmark's ledger): the external
+   work and the Rayleigh dissipation so far (trapezoidal rule over each step, the rule of the
+   average-acceleration step), the kinetic and strain energy, the work of the contact tractions
+   so far (BoltContactStateEndSolve; friction's part is the dissipated history), and the balance
+   external - kinetic change - strain change - Rayleigh - contact. */
+enum { BOLT_LEDGER_EXTERNAL, BOLT_LEDGER_KINETIC, BOLT_LEDGER_STRAIN, BOLT_LEDGER_RAYLEIGH, BOLT_LEDGER_CONTACT, BOLT_LEDGER_BALANCE, BOLT_LEDGER };
 
 typedef struct {
   BoltOperator   *op;
@@ -445,6 +454,8 @@ typedef struct {
   PetscInt        nsteps, step;
   PetscReal      *probeTime, *probeValue, *energy;
   PetscReal      *slipping, *dissipated; /* per step: slipping contact points, energy dissipated by friction so far [J] */
+  PetscReal      *ledger;     /* per step, BOLT_LEDGER rows of nsteps + 1 (BoltLedger): the energy accounting [J] */
+  Vec             vOld, dq;   /* the step's start velocity and displacement change (energy accounting) */
   PetscInt        snapshotEvery, nsnap;
   Vec            *snap;
   PetscReal      *snapTime;

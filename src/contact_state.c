@@ -30,6 +30,7 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
   PetscCall(PetscCalloc2(12 * ne + 1, &s->lambda, 12 * ne + 1, &s->gap));
   PetscCall(PetscCalloc2(12 * ne + 1, &s->anchor, 12 * ne + 1, &s->lambdaForce));
   PetscCall(PetscCalloc4(12 * ne + 1, &s->lambdaPrev, 4 * ne + 1, &s->closedSteps, 12 * ne + 1, &s->slipStart, 16 * ne + 1, &s->slipDir));
+  PetscCall(PetscCalloc1(12 * ne + 1, &s->tractionStart));
   s->reanchor = c->reanchor;
   s->slipAngleTolerance = c->slipAngleTolerance;
   s->slipStiffnessRatio = c->slipStiffnessRatio;
@@ -49,6 +50,7 @@ PetscErrorCode BoltContactStateDestroy(BoltContactState **sp)
   PetscCall(PetscFree2(s->lambda, s->gap));
   PetscCall(PetscFree2(s->anchor, s->lambdaForce));
   PetscCall(PetscFree4(s->lambdaPrev, s->closedSteps, s->slipStart, s->slipDir));
+  PetscCall(PetscFree(s->tractionStart));
   PetscCall(PetscFree4(s->active, s->activeOld, s->activeOlder, s->released));
   PetscCall(PetscFree(s->dirty));
   PetscCall(PetscFree(s->Ke));
@@ -120,7 +122,8 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
 /* Element e's state as BOLT_CONTACT_PACK values (checkpoints): multipliers (12), gaps (12), the
    active flags of the last three outer iterations and the released flags (4 each), anchors (12),
    the multipliers of the step before (12), the closed steps in a row (4) and the raw gaps at the
-   start of the step (12) and the slip directions and stiffnesses (16, friction). */
+   start of the step (12), the slip directions and stiffnesses (16, friction) and the tractions at
+   the start of the step (12). */
 void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
 {
   PetscInt k = 0;
@@ -136,6 +139,7 @@ void BoltContactStatePack(BoltContactState *s, PetscInt e, PetscReal buf[])
   for (PetscInt i = 0; i < 4; i++) buf[k++] = s->closedSteps[4 * e + i];
   for (PetscInt i = 0; i < 12; i++) buf[k++] = s->slipStart[12 * e + i];
   for (PetscInt i = 0; i < 16; i++) buf[k++] = s->slipDir[16 * e + i];
+  for (PetscInt i = 0; i < 12; i++) buf[k++] = s->tractionStart[12 * e + i];
 }
 
 /* The inverse of BoltContactStatePack; the element is due for a stiffness update. Not collective:
@@ -156,6 +160,7 @@ void BoltContactStateUnpack(BoltContactState *s, PetscInt e, const PetscReal buf
   for (PetscInt i = 0; i < 4; i++) s->closedSteps[4 * e + i] = (PetscInt)buf[64 + i];
   for (PetscInt i = 0; i < 12; i++) s->slipStart[12 * e + i] = buf[68 + i];
   for (PetscInt i = 0; i < 16; i++) s->slipDir[16 * e + i] = buf[80 + i];
+  for (PetscInt i = 0; i < 12; i++) s->tractionStart[12 * e + i] = buf[96 + i];
   s->dirty[e]    = PETSC_TRUE;
   s->KcAssembled = PETSC_FALSE;
 }
@@ -175,7 +180,8 @@ PetscErrorCode BoltContactStateReset(BoltContactState *s)
   PetscCall(PetscArrayzero(s->gap, 12 * c->nelem));
   PetscCall(PetscArrayzero(s->anchor, 12 * c->nelem));
   PetscCall(PetscArrayzero(s->slipStart, 12 * c->nelem));
-  s->dissipated = 0;
+  PetscCall(PetscArrayzero(s->tractionStart, 12 * c->nelem));
+  s->dissipated = s->contactWork = 0;
   s->anchored = PETSC_FALSE;
   s->nactive = c->ngpGlobal;
   BoltContactStateChanged(s);
@@ -343,24 +349,52 @@ void BoltContactStateExtrapolate(BoltContactState *s)
   BoltContactStateChanged(s);
 }
 
-/* Coulomb, after a converged solve: the energy dissipated by the slipping pairs over the step
-   (traction along the slip times the pair's area; with count), and the raw gaps from which the
-   next step's slip is measured. */
-void BoltContactStateStartSlip(BoltContactState *s, PetscBool count)
+/* Strict laws, after a converged solve: the work the contact tractions did over the step (with
+count), and the raw gaps and tractions from which the next step's are measured. Per point, the
+mean of its traction at the step's ends times its gap's change, times its area: the trapezoidal
+rule of the Newmark step, so that with the structure's energies it balances the external work
+(BoltNewmark's energy accounting). The friction's part: that over the slip of the pairs slipping
+at the step's end (their traction is lambda + K_c's part across the slip). */
+void BoltContactStateEndSolve(BoltContactState *s, PetscBool count)
 {
   BoltContactSet *c = s->set;
 
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-    if (count && s->active[gp] && s->released[gp]) {
-      const PetscReal *t = &s->lambda[3 * gp];
-      PetscReal        slip[3], across[3], work = 0;
-      BoltContactStateSlip(s, gp, slip);
-      BoltAcross(&c->gpNormal[3 * gp], &s->slipDir[4 * gp], slip, across); /* the traction is lambda + K_c's part across d */
-      for (PetscInt k = 0; k < 3; k++) work += (t[k] + s->slipDir[4 * gp + 3] * across[k]) * slip[k];
-      s->dissipated += c->gpW[gp] * work;
+    const PetscReal *n = &c->gpNormal[3 * gp];
+    PetscReal        t[3] = {0, 0, 0}, raw[3], slip[3];
+    for (PetscInt k = 0; k < 3; k++) raw[k] = s->gap[3 * gp + k] + s->anchor[3 * gp + k];
+    if (s->active[gp]) {
+      for (PetscInt k = 0; k < 3; k++) t[k] = s->lambda[3 * gp + k];
+      if (s->law.friction && s->released[gp]) {
+        PetscReal across[3];
+        BoltContactStateSlip(s, gp, slip);
+        BoltAcross(n, &s->slipDir[4 * gp], slip, across);
+        for (PetscInt k = 0; k < 3; k++) t[k] += s->slipDir[4 * gp + 3] * across[k];
+      }
     }
-    for (PetscInt k = 3 * gp; k < 3 * gp + 3; k++) s->slipStart[k] = s->gap[k] + s->anchor[k];
+    if (count) {
+      PetscReal work = 0, fric = 0;
+      for (PetscInt k = 0; k < 3; k++) {
+        const PetscReal mean = 0.5 * (s->tractionStart[3 * gp + k] + t[k]);
+        work += mean * (raw[k] - s->slipStart[3 * gp + k]);
+        if (s->law.friction && s->active[gp] && s->released[gp]) fric += mean * slip[k];
+      }
+      s->contactWork += c->gpW[gp] * work;
+      s->dissipated += c->gpW[gp] * fric;
+    }
+    for (PetscInt k = 0; k < 3; k++) {
+      s->slipStart[3 * gp + k]     = raw[k];
+      s->tractionStart[3 * gp + k] = t[k];
+    }
   }
+}
+
+/* The work the contact tractions did so far [J], over all ranks. */
+PetscErrorCode BoltContactStateContactWork(BoltContactState *s, PetscReal *work)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MPIU_Allreduce(&s->contactWork, work, 1, MPIU_REAL, MPI_SUM, s->set->mesh->comm));
+  PetscFunctionReturn(0);
 }
 
 /* The energy the slipping pairs dissipated so far [J], over all ranks. */

@@ -503,7 +503,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     d->worstProduct     = PetscMax(d->worstProduct, prod);
   }
   if (d->dynamic) BoltContactStateEndStep(s);
-  if (s->law.friction) BoltContactStateStartSlip(s, d->dynamic);
+  BoltContactStateEndSolve(s, d->dynamic);
   PetscCall(BoltDualCount(d, sets, solves, nouter, ninner));
   PetscFunctionReturn(0);
 }

@@ -75,7 +75,9 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscCall(VecDuplicate(nm->q, &nm->acc));
   PetscCall(VecDuplicate(nm->q, &nm->rhs));
   PetscCall(VecDuplicate(nm->q, &nm->work));
-  PetscCall(PetscCalloc5(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy, nm->nsteps + 1, &nm->slipping, nm->nsteps + 1, &nm->dissipated));
+  PetscCall(PetscCalloc6(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy, nm->nsteps + 1, &nm->slipping, nm->nsteps + 1, &nm->dissipated, BOLT_LEDGER * (nm->nsteps + 1), &nm->ledger));
+  PetscCall(VecDuplicate(nm->q, &nm->vOld));
+  PetscCall(VecDuplicate(nm->q, &nm->dq));
   if (nm->snapshotEvery > 0) {
     PetscInt n = nm->nsteps / nm->snapshotEvery + 1;
     PetscCall(PetscCalloc1(n, &nm->snapTime));
@@ -146,6 +148,38 @@ static PetscErrorCode BoltNewmarkEnergy(BoltNewmark *nm, PetscReal amp, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* Row n of the energy accounting (BoltLedger) from the step n-1 -> n: q, v hold the new state,
+   vOld the step's start velocity, dq the displacement change; amp0, amp the load's amplitudes
+   at the step's ends. Row 0: the preloaded start. */
+static PetscErrorCode BoltNewmarkLedger(BoltNewmark *nm, PetscInt n, PetscReal amp0, PetscReal amp)
+{
+  BoltOperator *op = nm->op;
+  PetscReal    *L  = nm->ledger;
+  PetscInt      N  = nm->nsteps + 1;
+  PetscScalar   ek, es, wl, wp, wc = 0, dr;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(op->M, nm->v, nm->work));
+  PetscCall(VecDot(nm->v, nm->work, &ek));
+  PetscCall(MatMult(op->K, nm->q, nm->work));
+  PetscCall(VecDot(nm->q, nm->work, &es));
+  L[BOLT_LEDGER_KINETIC * N + n] = 0.5 * PetscRealPart(ek);
+  L[BOLT_LEDGER_STRAIN * N + n]  = 0.5 * PetscRealPart(es);
+  if (n > 0) {
+    PetscCall(VecDot(nm->dq, op->load, &wl));
+    PetscCall(VecDot(nm->dq, op->preload, &wp));
+    PetscCall(VecWAXPY(nm->work, 1.0, nm->vOld, nm->v));
+    PetscCall(MatMult(op->C, nm->work, nm->rhs)); /* rhs is free until the next step builds it */
+    PetscCall(VecDot(nm->dq, nm->rhs, &dr));
+    if (op->state->law.strict && op->state->augment) PetscCall(BoltContactStateContactWork(op->state, &wc));
+    L[BOLT_LEDGER_EXTERNAL * N + n] = L[BOLT_LEDGER_EXTERNAL * N + n - 1] + 0.5 * (amp0 + amp) * PetscRealPart(wl) + PetscRealPart(wp);
+    L[BOLT_LEDGER_RAYLEIGH * N + n] = L[BOLT_LEDGER_RAYLEIGH * N + n - 1] + 0.5 * PetscRealPart(dr);
+    L[BOLT_LEDGER_CONTACT * N + n]  = PetscRealPart(wc);
+  }
+  L[BOLT_LEDGER_BALANCE * N + n] = L[BOLT_LEDGER_EXTERNAL * N + n] - (L[BOLT_LEDGER_KINETIC * N + n] - L[BOLT_LEDGER_KINETIC * N]) - (L[BOLT_LEDGER_STRAIN * N + n] - L[BOLT_LEDGER_STRAIN * N]) - L[BOLT_LEDGER_RAYLEIGH * N + n] - L[BOLT_LEDGER_CONTACT * N + n];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
 {
   BoltOperator  *op   = nm->op;
@@ -172,6 +206,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     nm->nsnap       = 1;
   }
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0]));
+  PetscCall(BoltNewmarkLedger(nm, 0, 0, 0));
   if (nm->restart) PetscCall(BoltNewmarkCheckpointRead(nm)); /* state, contact state and histories */
   step0 = nm->step;
   for (PetscInt n = step0 + 1; n <= nm->nsteps; n++) {
@@ -195,6 +230,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     /* a_new = a1 (q - q_old) - a2 v - a3 a;  v_new = v + dt ((1 - gamma) a + gamma a_new) */
     PetscCall(VecWAXPY(nm->work, -1.0, qOld, nm->q));
     PetscCall(VecAXPBYPCZ(nm->work, -a[2], -a[3], a[1], nm->v, nm->acc));
+    PetscCall(VecCopy(nm->v, nm->vOld));
     PetscCall(VecAXPBYPCZ(nm->v, (1 - nm->gamma) * nm->dt, nm->gamma * nm->dt, 1.0, nm->acc, nm->work));
     PetscCall(VecCopy(nm->work, nm->acc));
     nm->probeTime[n] = t;
@@ -204,6 +240,8 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     }
     PetscCall(op->ops.probe(op, nm->q, &nm->probeValue[n]));
     PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n]));
+    PetscCall(VecWAXPY(nm->dq, -1.0, qOld, nm->q));
+    PetscCall(BoltNewmarkLedger(nm, n, BoltLoadAmplitude(nm, t - nm->dt), amp));
     if (op->state->law.friction) {
       PetscInt nslip;
       PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
@@ -261,7 +299,9 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   PetscCall(VecDestroy(&nm->acc));
   PetscCall(VecDestroy(&nm->rhs));
   PetscCall(VecDestroy(&nm->work));
-  PetscCall(PetscFree5(nm->probeTime, nm->probeValue, nm->energy, nm->slipping, nm->dissipated));
+  PetscCall(PetscFree6(nm->probeTime, nm->probeValue, nm->energy, nm->slipping, nm->dissipated, nm->ledger));
+  PetscCall(VecDestroy(&nm->vOld));
+  PetscCall(VecDestroy(&nm->dq));
   if (nm->snap) PetscCall(VecDestroyVecs(nm->nsteps / nm->snapshotEvery + 1, &nm->snap));
   PetscCall(PetscFree(nm->snapTime));
   PetscCall(PetscFree(*nmp));

@@ -56,6 +56,30 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
     PetscCall(BoltJSONReal(j, "probe_min", mn));
     PetscCall(BoltJSONReal(j, "probe_max", mx));
   }
+  if (full) {
+    /* the energy accounting at the end, and its balance's largest value over the run relative
+       to the largest term */
+    const PetscReal *L = nm->ledger;
+    const PetscInt   N = nm->nsteps + 1, e = nm->nsteps;
+    PetscReal        worst = 0, scale = 0;
+    for (PetscInt i = 0; i < N; i++) {
+      worst = PetscMax(worst, PetscAbsReal(L[BOLT_LEDGER_BALANCE * N + i]));
+      scale = PetscMax(scale, PetscAbsReal(L[BOLT_LEDGER_EXTERNAL * N + i]));
+      scale = PetscMax(scale, L[BOLT_LEDGER_KINETIC * N + i]);
+      scale = PetscMax(scale, PetscAbsReal(L[BOLT_LEDGER_STRAIN * N + i] - L[BOLT_LEDGER_STRAIN * N]));
+      scale = PetscMax(scale, L[BOLT_LEDGER_RAYLEIGH * N + i]);
+      scale = PetscMax(scale, PetscAbsReal(L[BOLT_LEDGER_CONTACT * N + i]));
+    }
+    PetscCall(BoltJSONBeginObject(j, "energy"));
+    PetscCall(BoltJSONReal(j, "external_work", L[BOLT_LEDGER_EXTERNAL * N + e]));
+    PetscCall(BoltJSONReal(j, "kinetic_change", L[BOLT_LEDGER_KINETIC * N + e] - L[BOLT_LEDGER_KINETIC * N]));
+    PetscCall(BoltJSONReal(j, "strain_change", L[BOLT_LEDGER_STRAIN * N + e] - L[BOLT_LEDGER_STRAIN * N]));
+    PetscCall(BoltJSONReal(j, "rayleigh", L[BOLT_LEDGER_RAYLEIGH * N + e]));
+    PetscCall(BoltJSONReal(j, "contact_work", L[BOLT_LEDGER_CONTACT * N + e]));
+    PetscCall(BoltJSONReal(j, "friction", nm->dissipated[e]));
+    PetscCall(BoltJSONReal(j, "balance_rel", scale > 0 ? worst / scale : 0));
+    PetscCall(BoltJSONEndObject(j));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -245,6 +269,10 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
     PetscCall(BoltOutputSeries(&h5, "/fom", "time", fom->nsteps + 1, fom->probeTime));
     PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fom->nsteps + 1, fom->probeValue));
     PetscCall(BoltOutputSeries(&h5, "/fom", "energy", fom->nsteps + 1, fom->energy));
+    {
+      const char *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
+      for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(&h5, "/fom/energy_accounting", rows[r], fom->nsteps + 1, &fom->ledger[r * (fom->nsteps + 1)]));
+    }
     if (fom->op->state->law.friction) {
       PetscCall(BoltOutputSeries(&h5, "/fom", "slipping", fom->nsteps + 1, fom->slipping));
       PetscCall(BoltOutputSeries(&h5, "/fom", "dissipated", fom->nsteps + 1, fom->dissipated));
@@ -255,6 +283,10 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
     PetscCall(BoltOutputSeries(&h5, "/rom", "time", rom->nsteps + 1, rom->probeTime));
     PetscCall(BoltOutputSeries(&h5, "/rom", "probe", rom->nsteps + 1, rom->probeValue));
     PetscCall(BoltOutputSeries(&h5, "/rom", "energy", rom->nsteps + 1, rom->energy));
+    {
+      const char *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
+      for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(&h5, "/rom/energy_accounting", rows[r], rom->nsteps + 1, &rom->ledger[r * (rom->nsteps + 1)]));
+    }
     if (rom->op->state->law.friction) {
       PetscCall(BoltOutputSeries(&h5, "/rom", "slipping", rom->nsteps + 1, rom->slipping));
       PetscCall(BoltOutputSeries(&h5, "/rom", "dissipated", rom->nsteps + 1, rom->dissipated));

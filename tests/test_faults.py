@@ -121,7 +121,7 @@ def test_killed_run_leaves_previous_results(joint_small, tmp_path):
         assert (out / name).read_bytes() == data, name
     with h5py.File(out / "paper-step-fom.ckpt.h5") as f:
         step = int(f["/checkpoint/history"].attrs["step"])
-        assert step >= 20 and step % 5 == 0 and len(f["/checkpoint/history"]) == 15 + 5 * (step + 1)
+        assert step >= 20 and step % 5 == 0 and len(f["/checkpoint/history"]) == 15 + 11 * (step + 1)
     p = run_boltrom(longer[:-1] + ["-restart"])
     assert f"restarted from {out / 'paper-step-fom.ckpt.h5'} at step {step}" in p.stdout
     with h5py.File(out / "paper-step.h5") as f:

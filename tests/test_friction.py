@@ -1,6 +1,7 @@
 """Coulomb friction (-contact_law coulomb): a block pressed on another by N (the preload's
 calibrated force) under a tangential load at its top, against the analytic answers of a rigid
-block with Coulomb friction; the law with an unreachable cone against the strict law; bad input."""
+block with Coulomb friction, and the energy balance; the law with an unreachable cone against the
+strict law; bad input."""
 import h5py
 import numpy as np
 import pytest
@@ -21,6 +22,16 @@ BLOCK = ["-fom", "-rom", "false", "-static", "false", "-modal_nev", "0", "-conta
 @pytest.fixture(scope="module")
 def blocks(meshdir):
     return make_mesh("blocks", meshdir / "blocks.msh", 1)[0]
+
+
+def assert_energy_balance(fom):
+    """External work = kinetic + strain + Rayleigh + friction to 1e-6 of the largest of them, and
+    the contact tractions' work is the friction's (sticking pairs do none)."""
+    e = fom["energy"]
+    assert e["balance_rel"] <= 1e-6
+    terms = e["kinetic_change"] + e["strain_change"] + e["rayleigh"] + e["friction"]
+    assert abs(e["external_work"] - terms) <= 1e-6 * abs(e["external_work"])
+    assert e["friction"] > 0.1 * e["external_work"]
 
 
 def history(folder):
@@ -49,6 +60,7 @@ def test_block_sticks_until_mu_n_then_slides_as_a_rigid_body(blocks, tmp_path):
     assert slide == pytest.approx(rigid, rel=0.01)
     assert h["dissipated"][-1] - h["dissipated"][onset] == pytest.approx(MU * N * slide, rel=0.01)
     assert s["fom"]["failures"] == 0
+    assert_energy_balance(s["fom"])
 
 
 def test_cyclic_load_dissipates_four_mu_n_times_the_slip_amplitude(blocks, tmp_path):
@@ -68,6 +80,7 @@ def test_cyclic_load_dissipates_four_mu_n_times_the_slip_amplitude(blocks, tmp_p
         assert amplitude > 1e-4  # it slides: far above the elastic part (about 2e-6 m)
         assert d[c] - d[a] == pytest.approx(4 * MU * N * amplitude, rel=0.01)
     assert s["fom"]["failures"] == 0
+    assert_energy_balance(s["fom"])
 
 
 def test_unreachable_cone_is_the_strict_law(joint_small, tmp_path):
