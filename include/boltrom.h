@@ -251,6 +251,7 @@ PetscErrorCode BoltContactStateCloseCycle(BoltContactState *, PetscInt *);
 void           BoltContactStateExtrapolate(BoltContactState *);
 void           BoltContactStateEndStep(BoltContactState *);
 void           BoltContactStateEndSolve(BoltContactState *, PetscBool);
+void           BoltContactStateStaticStart(BoltContactState *);
 PetscErrorCode BoltContactStateContactWork(BoltContactState *, PetscReal *);
 #define BOLT_FRICTION_MARGIN 1e-6 /* a sticking pair slips once its traction is beyond the cone by this fraction */
 PetscErrorCode BoltContactStateDissipated(BoltContactState *, PetscReal *);

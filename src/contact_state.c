@@ -389,6 +389,13 @@ void BoltContactStateEndSolve(BoltContactState *s, PetscBool count)
   }
 }
 
+/* Before a static solve: it goes from the unloaded state, so slips and contact work are
+   measured from zero gaps and tractions (not from where a run left them). */
+void BoltContactStateStaticStart(BoltContactState *s)
+{
+  for (PetscInt k = 0; k < 12 * s->set->nelem; k++) s->slipStart[k] = s->tractionStart[k] = 0;
+}
+
 /* The work the contact tractions did so far [J], over all ranks. */
 PetscErrorCode BoltContactStateContactWork(BoltContactState *s, PetscReal *work)
 {

@@ -306,7 +306,7 @@ PetscErrorCode BoltDualCreate(BoltOperator *op, BoltDual **dp)
   d->maxInner       = 5000;
   d->tolLambda      = 1e-4;
   d->tolPenetration = 1e-9;
-  d->tolFriction    = 1e-9;
+  d->tolFriction    = 1e-7;
   d->warmStart      = PETSC_TRUE;
   d->extrapolate    = PETSC_TRUE;
   d->closeCycles    = PETSC_TRUE;
@@ -575,6 +575,7 @@ PetscErrorCode BoltDualSolveStatic(BoltDual *d, Vec rhs, Vec q, PetscReal target
   d->preloadScale  = 1.0;
   d->preloadTarget = target;
   d->calibrating   = target > 0 ? PETSC_TRUE : PETSC_FALSE;
+  BoltContactStateStaticStart(d->op->state);
   PetscCall(BoltDualSolve(d, rhs, q, PETSC_TRUE, nouter, ninner));
   d->calibrating = PETSC_FALSE;
   PetscFunctionReturn(0);

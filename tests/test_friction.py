@@ -63,6 +63,21 @@ def test_block_sticks_until_mu_n_then_slides_as_a_rigid_body(blocks, tmp_path):
     assert_energy_balance(s["fom"])
 
 
+def test_rom_follows_the_frictional_fom(blocks, tmp_path):
+    """The ROM without interface reduction (the contact DOFs are its inputs) on the ramp: the same
+    law in the same loop, so the same history to 1e-5 and the same dissipation to 1e-5."""
+    F, t_end = 2 * MU * N, 2e-3
+    s = run_summary(["-mesh", blocks] + BLOCK + ["-rom", "true", "-rom_n_ccm", "0", "-rom_n_jim", "0",
+                                                 "-rom_file", tmp_path / "rom.h5", "-load_force", str(F),
+                                                 "-load_history", "ramp", "-ts_dt", "5e-6", "-ts_end", str(t_end),
+                                                 "-output_dir", tmp_path], tmp_path)
+    assert s["errors"]["top"]["e_L2"] < 1e-5
+    with h5py.File(tmp_path / "joint.h5") as f:
+        fom, rom = float(f["fom/dissipated"][-1]), float(f["rom/dissipated"][-1])
+    assert fom > 0.1 and rom == pytest.approx(fom, rel=1e-5)
+    assert s["rom"]["failures"] == 0
+
+
 def test_cyclic_load_dissipates_four_mu_n_times_the_slip_amplitude(blocks, tmp_path):
     """T = 2 mu N sin(2 pi 500 t): between two turning points of the same side the friction
     dissipates 4 mu N A, A half the distance between the turning points (1 %); the block creeps,
