@@ -482,9 +482,10 @@ PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpe
    - slipping, but not forward along its slip direction over the step: it sticks where it was at
      the start of the step;
    - slipping on: its traction goes on the cone along its slip over the step, mu |t_N| s/|s|; K_c
-     takes the derivative of that traction, mu |t_N| / |s| across s (a Newton step), when the
-     direction has turned by more than the angle tolerance or the stiffness is off by more than
-     a factor two (else the last one: the traction is updated all the same).
+     takes twice the derivative of that traction across s, 2 mu |t_N| / |s| (a damped Newton
+     step), when the direction has turned by more than -contact_slip_angle_tolerance or the
+     stiffness is off by more than -contact_slip_stiffness_ratio (else it keeps the last one: the
+     traction is updated all the same).
    *moved is the tangential traction's change over |t_N|. Returns whether K_c changed. */
 static PetscBool BoltContactStateStickSlip(BoltContactState *s, PetscInt gp, PetscInt pair, PetscReal *moved)
 {
@@ -598,7 +599,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
   if (s->law.friction) PetscCall(MPIU_Allreduce(&fric, &s->frictionChange, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   *nchanged  = glob[0];
   s->nactive = glob[1];
-  if (glob[0]) BoltContactStateChanged(s);
+  if (glob[0] || s->law.friction) BoltContactStateChanged(s); /* friction moves slipping pairs' multipliers */
   /* once points only close (anti-cycling) the set grows and cannot cycle: a return to the set of
      two iterations back is then the points opened just before closing again */
   *cycling   = (!s->closeOnly && glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;
