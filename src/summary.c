@@ -56,9 +56,9 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
     PetscCall(BoltJSONReal(j, "probe_min", mn));
     PetscCall(BoltJSONReal(j, "probe_max", mx));
   }
-  if (full) {
+  if (full && nm->op->state->law.strict && nm->op->state->augment) {
     /* the energy accounting at the end, and its balance's largest value over the run relative
-       to the largest term */
+       to the largest term (the strict laws' loop measures the contact work) */
     const PetscReal *L = nm->ledger;
     const PetscInt   N = nm->nsteps + 1, e = nm->nsteps;
     PetscReal        worst = 0, scale = 0;
