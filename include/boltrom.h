@@ -145,6 +145,8 @@ typedef struct {
   PetscReal           frictionDefault;             /* -contact_friction */
   PetscReal           slipAngleTolerance;          /* -contact_slip_angle_tolerance [rad] */
   PetscReal           slipStiffnessRatio;          /* -contact_slip_stiffness_ratio */
+  PetscReal           stickFactor;                 /* -contact_stick_stiffness_factor: x E of the softer part, per metre */
+  PetscReal           stickStiffness[BOLTROM_MAX_PAIRS]; /* frictional law: tangential stiffness of a sticking pair [Pa/m] */
   PetscBool           frictionSet;
   PetscInt            contactDofsPerPair[BOLTROM_MAX_PAIRS], contactDofs;
   PetscInt            elementsPerPair[BOLTROM_MAX_PAIRS];
@@ -187,11 +189,13 @@ typedef struct {
   PetscReal       activationGap;
   PetscInt        openTest;
   PetscReal       epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS], bandTraction[BOLTROM_MAX_PAIRS];
+  PetscReal       stickStiffness[BOLTROM_MAX_PAIRS]; /* frictional law: elastic stick [Pa/m], not scaled with the penalties (it is physics) */
   PetscReal      *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
   PetscBool      *active, *activeOld, *activeOlder;
   PetscBool      *released;       /* strict law, -contact_reclose slide: the point has opened, and slides (normal contact only) when closed */
   PetscBool       reanchor;       /* strict law, -contact_reclose stick: a pair that closes again sticks where it closes */
-  PetscReal      *anchor;         /* 3 per point: tangential position where a re-closed pair sticks (0: since the start) */
+  PetscReal      *anchor;         /* 3 per point: tangential position where a re-closed pair sticks (0: since the start);
+                                     frictional law: the tangential raw gap from which its elastic stick is measured */
   PetscReal      *lambdaForce;    /* 3 per point: lambda - epsT anchor, the multipliers that the solve's forces take */
   PetscReal      *lambdaPrev;     /* 3 per point: the multipliers of the converged step before the last (BoltContactStateExtrapolate) */
   PetscInt       *closedSteps;    /* per point: converged steps in a row it ended closed, at most 2 */
@@ -200,8 +204,9 @@ typedef struct {
   PetscReal       contactWork;    /* strict laws: work of the contact tractions over the converged steps [J] (local) */
   PetscReal       dissipated;     /* frictional law: energy dissipated by slip over the converged steps [J] (local) */
   PetscReal      *slipDir;        /* frictional law, 4 per point: the direction a slipping pair slides along in K_c,
-                                     and K_c's stiffness across it (the traction's derivative, mu |t_N| / |slip|) */
-  PetscReal       frictionChange; /* frictional law: the last update's largest slip-traction change over |t_N| (global) */
+                                     and K_c's stiffness across it (the return map's derivative, k_t mu |t_N| / |trial|) */
+  PetscBool       stickOnly;      /* frictional law: closed pairs never slip (the basis's static shapes) */
+  PetscReal       frictionChange; /* frictional law: the last update's largest slip-traction change [Pa] over the largest pressure (global) */
   PetscReal       slipStiffnessRatio; /* frictional law: K_c takes a slipping pair's new stiffness when off by more than this factor */
   PetscReal       slipAngleTolerance; /* frictional law: a slipping pair's direction turns when its traction is off it by more [rad] */
   PetscBool       anchored;       /* some local point has a non-zero anchor */
@@ -252,6 +257,7 @@ void           BoltContactStateExtrapolate(BoltContactState *);
 void           BoltContactStateEndStep(BoltContactState *);
 void           BoltContactStateEndSolve(BoltContactState *, PetscBool);
 void           BoltContactStateStaticStart(BoltContactState *);
+PetscErrorCode BoltContactStateStickEnergy(BoltContactState *, PetscReal *);
 PetscErrorCode BoltContactStateContactWork(BoltContactState *, PetscReal *);
 #define BOLT_FRICTION_MARGIN 1e-6 /* a sticking pair slips once its traction is beyond the cone by this fraction */
 PetscErrorCode BoltContactStateDissipated(BoltContactState *, PetscReal *);
@@ -279,7 +285,13 @@ static inline void BoltContactStateChanged(BoltContactState *s)
 /* The tangential penalty at point gp of a pair: none where the point slides (released). */
 static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)
 {
-  return s->released[gp] ? 0 : s->epsT[pair];
+  return s->released[gp] ? 0 : (s->law.friction ? s->stickStiffness[pair] : s->epsT[pair]);
+}
+/* The tangential stiffness of a closed, sticking pair in K_c: the penalty, or under friction the
+   elastic stick. */
+static inline PetscReal BoltContactStateStickStiffness(const BoltContactState *s, PetscInt pair)
+{
+  return s->law.friction ? s->stickStiffness[pair] : s->epsT[pair];
 }
 /* Element e's slip directions for its stiffness (NULL: none, released points slide freely). */
 static inline const PetscReal *BoltContactStateSlipDirs(const BoltContactState *s, PetscInt e)
@@ -431,7 +443,7 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *, PetscInt, PetscInt, PetscInt,
 PetscErrorCode BoltContactMonitorTension(BoltDual *);
 
 /* ------------------------------------------------------------------ newmark.c */
-typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1, BOLT_LOAD_RAMP = 2 } BoltLoadHistory;
+typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1, BOLT_LOAD_RAMP = 2, BOLT_LOAD_RELEASE = 3 } BoltLoadHistory;
 /* The energy accounting of a Newmark run, per step (rows of BoltNewmark's ledger): the external
    work and the Rayleigh dissipation so far (trapezoidal rule over each step, the rule of the
    average-acceleration step), the kinetic and strain energy, the work of the contact tractions
@@ -446,6 +458,7 @@ typedef struct {
   BoltLoadHistory history;
   PetscReal       frequency;
   PetscReal       rampTime; /* -load_ramp_time (0: tEnd) */
+  PetscReal       releaseTime; /* -load_release_time: the release history drops the load after it */
   PetscBool       monitor;
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       calibratePreload;
@@ -455,6 +468,7 @@ typedef struct {
   PetscInt        nsteps, step;
   PetscReal      *probeTime, *probeValue, *energy;
   PetscReal      *slipping, *dissipated; /* per step: slipping contact points, energy dissipated by friction so far [J] */
+  PetscReal       stickEnergy0;  /* frictional law: the elastic sticks' energy at the start of the transient [J] */
   PetscReal      *ledger;     /* per step, BOLT_LEDGER rows of nsteps + 1 (BoltLedger): the energy accounting [J] */
   Vec             vOld, dq;   /* the step's start velocity and displacement change (energy accounting) */
   PetscInt        snapshotEvery, nsnap;

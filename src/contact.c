@@ -19,6 +19,7 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
   c->frictionDefault = 0.3;
   c->slipAngleTolerance = 1e-2;
   c->slipStiffnessRatio = 1.1;
+  c->stickFactor        = 200;
   *cs               = c;
   PetscFunctionReturn(0);
 }
@@ -55,7 +56,9 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient of every pair (-contact_law coulomb; -contact_<pair>_friction sets one pair)", NULL, c->frictionDefault, &c->frictionDefault, &c->frictionSet));
   PetscCall(PetscOptionsReal("-contact_slip_angle_tolerance", "Coulomb friction: K_c keeps a slipping pair's slip direction until its slip turns by more than this [rad] (a quasi-Newton step: the converged traction is on the cone along the slip whatever it is)", NULL, c->slipAngleTolerance, &c->slipAngleTolerance, NULL));
   PetscCall(PetscOptionsReal("-contact_slip_stiffness_ratio", "Coulomb friction: K_c takes a slipping pair's new stiffness across its slip (mu |t_N| / |slip|) once the one it has is off by more than this factor", NULL, c->slipStiffnessRatio, &c->slipStiffnessRatio, NULL));
+  PetscCall(PetscOptionsReal("-contact_stick_stiffness_factor", "Coulomb friction: tangential stiffness of a sticking pair (elastic stick, as the stick law's penalty and CalculiX's stick slope), x E of the softer part per metre [1/m]", NULL, c->stickFactor, &c->stickFactor, NULL));
   PetscOptionsEnd();
+  PetscCheck(c->stickFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_stick_stiffness_factor must be > 0 (got %g)", (double)c->stickFactor);
   PetscCheck(c->slipStiffnessRatio > 1, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_stiffness_ratio must be > 1 (got %g)", (double)c->slipStiffnessRatio);
   PetscCheck(c->slipAngleTolerance > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_angle_tolerance must be > 0 (got %g)", (double)c->slipAngleTolerance);
   PetscCheck(!c->frictionSet || law->friction, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_friction needs a frictional law: add -contact_law coulomb (the %s law has no Coulomb limit)", c->lawType);
@@ -340,6 +343,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
       PetscOptionsEnd();
       PetscCheck(factor > 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be > 0 (got %g)", opt, (double)factor);
       c->epsN[p] = c->epsT[p] = factor * PetscMin(Ea, Eb);
+      c->stickStiffness[p] = c->stickFactor * PetscMin(Ea, Eb);
       c->friction[p] = c->frictionDefault;
       PetscCall(PetscSNPrintf(opt, sizeof(opt), "-contact_%s_friction", c->pairName[p]));
       PetscOptionsBegin(m->comm, NULL, "Contact pair", "boltrom");

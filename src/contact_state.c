@@ -26,6 +26,7 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
     s->epsN[p]         = c->epsN[p];
     s->epsT[p]         = c->epsT[p];
     s->bandTraction[p] = c->bandTraction[p];
+    s->stickStiffness[p] = c->stickStiffness[p];
   }
   PetscCall(PetscCalloc2(12 * ne + 1, &s->lambda, 12 * ne + 1, &s->gap));
   PetscCall(PetscCalloc2(12 * ne + 1, &s->anchor, 12 * ne + 1, &s->lambdaForce));
@@ -199,18 +200,6 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *s)
   PetscFunctionReturn(0);
 }
 
-/* A pair's slip over the current step: the tangential part of its raw gap (u_b - u_a) less that
-   at the start of the step. */
-static void BoltContactStateSlip(const BoltContactState *s, PetscInt gp, PetscReal slip[3])
-{
-  const PetscReal *n = &s->set->gpNormal[3 * gp], *g = &s->gap[3 * gp], *a = &s->anchor[3 * gp], *g0 = &s->slipStart[3 * gp];
-  PetscReal        d[3], dn;
-
-  for (PetscInt k = 0; k < 3; k++) d[k] = g[k] + a[k] - g0[k];
-  dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-  for (PetscInt k = 0; k < 3; k++) slip[k] = d[k] - dn * n[k];
-}
-
 /* v less its parts along n and d: the directions in which a slipping pair is held. */
 static inline void BoltAcross(const PetscReal n[3], const PetscReal d[3], const PetscReal v[3], PetscReal out[3])
 {
@@ -218,20 +207,47 @@ static inline void BoltAcross(const PetscReal n[3], const PetscReal d[3], const 
   for (PetscInt k = 0; k < 3; k++) out[k] = v[k] - vn * n[k] - vd * d[k];
 }
 
-/* The trial traction of an active point: the law's, and at a pair slipping by friction the
-   linearised change of its friction traction with its slip over the step, K_c's stiffness across
-   the slip direction. */
+/* Coulomb, a closed pair: the tangential traction it would have if it had stuck since the start
+   of the step (or since it closed), its tangential traction then plus k_t times the change of its
+   tangential raw gap since then (the anchor; the gaps of a frictional state are raw). */
+static void BoltContactStateStickTrial(const BoltContactState *s, PetscInt gp, PetscInt pair, PetscReal trial[3])
+{
+  const PetscReal *n = &s->set->gpNormal[3 * gp], *g = &s->gap[3 * gp], *a = &s->anchor[3 * gp], *t0 = &s->tractionStart[3 * gp];
+  const PetscReal  kt = s->stickStiffness[pair];
+  PetscReal        dg[3], dn, t0n;
+
+  for (PetscInt k = 0; k < 3; k++) dg[k] = g[k] - a[k];
+  dn  = dg[0] * n[0] + dg[1] * n[1] + dg[2] * n[2];
+  t0n = t0[0] * n[0] + t0[1] * n[1] + t0[2] * n[2];
+  for (PetscInt k = 0; k < 3; k++) trial[k] = t0[k] - t0n * n[k] + kt * (dg[k] - dn * n[k]);
+}
+
+static inline PetscReal BoltNorm3(const PetscReal v[3])
+{
+  return PetscSqrtReal(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* The trial traction of an active point: the law's. Under Coulomb friction the normal part is
+   augmented as the strict law's, and the tangential part is the return map of the elastic stick's
+   trial onto the cone mu |t_N| at a slipping pair (a sticking pair whose trial leaves the cone is
+   turned to slipping by BoltContactStateStickSlip). */
 static void BoltContactStateTrial(const BoltContactState *s, PetscInt gp, PetscInt pair, PetscReal t[3])
 {
   const PetscReal *g = &s->gap[3 * gp], *n = &s->set->gpNormal[3 * gp];
 
-  s->law.traction(&s->lambda[3 * gp], g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
-  if (s->law.friction && s->released[gp]) {
-    PetscReal slip[3], across[3];
-    BoltContactStateSlip(s, gp, slip);
-    BoltAcross(n, &s->slipDir[4 * gp], slip, across);
-    for (PetscInt k = 0; k < 3; k++) t[k] += s->slipDir[4 * gp + 3] * across[k];
+  if (s->law.friction) {
+    const PetscReal *lam = &s->lambda[3 * gp];
+    const PetscReal  tn  = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2] + s->epsN[pair] * (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]);
+    PetscReal        tt[3], scale = 1;
+    BoltContactStateStickTrial(s, gp, pair, tt);
+    if (s->released[gp]) {
+      const PetscReal len = BoltNorm3(tt);
+      scale               = len > 0 ? s->set->friction[pair] * PetscMax(-tn, 0.0) / len : 0;
+    }
+    for (PetscInt k = 0; k < 3; k++) t[k] = tn * n[k] + scale * tt[k];
+    return;
   }
+  s->law.traction(&s->lambda[3 * gp], g, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
 }
 
 /* One augmentation: lambda <- trial traction at active points, 0 elsewhere. Returns the
@@ -274,7 +290,7 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
       }
       if (s->active[gp]) {
         const PetscReal gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
-        if (s->law.strict && !s->released[gp]) pen2 = PetscMax(pen2, g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        if (s->law.strict && !s->released[gp] && !s->law.friction) pen2 = PetscMax(pen2, g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
         else pen = PetscMax(pen, !s->law.strict ? -gn : PetscAbsReal(gn));
       }
     }
@@ -316,6 +332,13 @@ static void BoltContactStateAnchorAt(BoltContactState *s, PetscInt gp)
 static void BoltContactStateReclose(BoltContactState *s, PetscInt gp)
 {
   s->closedSteps[gp] = 0; /* its multipliers start afresh */
+  if (s->law.friction) { /* its elastic stick starts from no traction where it closes */
+    const PetscReal *t0 = &s->tractionStart[3 * gp], *n = &s->set->gpNormal[3 * gp];
+    const PetscReal  kt = s->stickStiffness[s->set->elem[gp / 4].pair], t0n = t0[0] * n[0] + t0[1] * n[1] + t0[2] * n[2];
+    for (PetscInt k = 0; k < 3; k++) s->anchor[3 * gp + k] = s->gap[3 * gp + k] + (t0[k] - t0n * n[k]) / kt;
+    s->released[gp] = PETSC_FALSE;
+    return;
+  }
   if (!s->law.strict) return;
   if (s->reanchor) BoltContactStateAnchorAt(s, gp);
   else s->released[gp] = PETSC_TRUE;
@@ -361,23 +384,25 @@ void BoltContactStateEndSolve(BoltContactState *s, PetscBool count)
 
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     const PetscReal *n = &c->gpNormal[3 * gp];
-    PetscReal        t[3] = {0, 0, 0}, raw[3], slip[3];
-    for (PetscInt k = 0; k < 3; k++) raw[k] = s->gap[3 * gp + k] + s->anchor[3 * gp + k];
-    if (s->active[gp]) {
+    PetscReal        t[3] = {0, 0, 0}, raw[3];
+    for (PetscInt k = 0; k < 3; k++) raw[k] = s->gap[3 * gp + k] + (s->law.friction ? 0 : s->anchor[3 * gp + k]);
+    if (s->active[gp])
       for (PetscInt k = 0; k < 3; k++) t[k] = s->lambda[3 * gp + k];
-      if (s->law.friction && s->released[gp]) {
-        PetscReal across[3];
-        BoltContactStateSlip(s, gp, slip);
-        BoltAcross(n, &s->slipDir[4 * gp], slip, across);
-        for (PetscInt k = 0; k < 3; k++) t[k] += s->slipDir[4 * gp + 3] * across[k];
-      }
-    }
     if (count) {
       PetscReal work = 0, fric = 0;
-      for (PetscInt k = 0; k < 3; k++) {
-        const PetscReal mean = 0.5 * (s->tractionStart[3 * gp + k] + t[k]);
-        work += mean * (raw[k] - s->slipStart[3 * gp + k]);
-        if (s->law.friction && s->active[gp] && s->released[gp]) fric += mean * slip[k];
+      for (PetscInt k = 0; k < 3; k++) work += 0.5 * (s->tractionStart[3 * gp + k] + t[k]) * (raw[k] - s->slipStart[3 * gp + k]);
+      if (s->law.friction && s->active[gp]) {
+        /* the slip beyond the elastic stick's: the gap's tangential change from the stick's rest
+           position less the traction's change over k_t (zero at a pair that stuck throughout) */
+        const PetscReal *a = &s->anchor[3 * gp], *t0 = &s->tractionStart[3 * gp], kt = s->stickStiffness[c->elem[gp / 4].pair];
+        PetscReal        slip[3], mean[3], sn, mn;
+        for (PetscInt k = 0; k < 3; k++) {
+          slip[k] = raw[k] - a[k] - (t[k] - t0[k]) / kt;
+          mean[k] = 0.5 * (t0[k] + t[k]);
+        }
+        sn = slip[0] * n[0] + slip[1] * n[1] + slip[2] * n[2];
+        mn = mean[0] * n[0] + mean[1] * n[1] + mean[2] * n[2];
+        for (PetscInt k = 0; k < 3; k++) fric += (mean[k] - mn * n[k]) * (slip[k] - sn * n[k]);
       }
       s->contactWork += c->gpW[gp] * work;
       s->dissipated += c->gpW[gp] * fric;
@@ -385,8 +410,29 @@ void BoltContactStateEndSolve(BoltContactState *s, PetscBool count)
     for (PetscInt k = 0; k < 3; k++) {
       s->slipStart[3 * gp + k]     = raw[k];
       s->tractionStart[3 * gp + k] = t[k];
+      if (s->law.friction) s->anchor[3 * gp + k] = raw[k]; /* the next step's sticks start here */
     }
   }
+}
+
+/* The elastic energy of the frictional sticks, sum over closed pairs of area |t_T|^2 / (2 k_t)
+   [J], over all ranks (zero without friction). With the friction's dissipation it accounts for
+   the contact tractions' work. */
+PetscErrorCode BoltContactStateStickEnergy(BoltContactState *s, PetscReal *energy)
+{
+  BoltContactSet *c   = s->set;
+  PetscReal       loc = 0;
+
+  PetscFunctionBeginUser;
+  if (s->law.friction)
+    for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+      const PetscReal *t = &s->lambda[3 * gp], *n = &c->gpNormal[3 * gp];
+      const PetscReal  tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+      if (!s->active[gp]) continue;
+      loc += c->gpW[gp] * (PetscSqr(t[0] - tn * n[0]) + PetscSqr(t[1] - tn * n[1]) + PetscSqr(t[2] - tn * n[2])) / (2 * s->stickStiffness[c->elem[gp / 4].pair]);
+    }
+  PetscCall(MPIU_Allreduce(&loc, energy, 1, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscFunctionReturn(0);
 }
 
 /* Before a static solve: it goes from the unloaded state, so slips and contact work are
@@ -394,6 +440,8 @@ void BoltContactStateEndSolve(BoltContactState *s, PetscBool count)
 void BoltContactStateStaticStart(BoltContactState *s)
 {
   for (PetscInt k = 0; k < 12 * s->set->nelem; k++) s->slipStart[k] = s->tractionStart[k] = 0;
+  if (s->law.friction)
+    for (PetscInt k = 0; k < 12 * s->set->nelem; k++) s->anchor[k] = 0;
 }
 
 /* The work the contact tractions did so far [J], over all ranks. */
@@ -421,7 +469,7 @@ void BoltContactStateEndStep(BoltContactState *s)
 /* Gaps relative to the anchors (after the raw gaps u_b - u_a were computed into gap). */
 void BoltContactStateAnchorGaps(BoltContactState *s, PetscReal gap[])
 {
-  if (!s->anchored) return;
+  if (!s->anchored || s->law.friction) return; /* a frictional state's anchors are its sticks' rest positions */
   for (PetscInt k = 0; k < 12 * s->set->nelem; k++) gap[k] -= s->anchor[k];
 }
 
@@ -431,6 +479,29 @@ const PetscReal *BoltContactStateForceMultipliers(BoltContactState *s)
 {
   BoltContactSet *c = s->set;
 
+  if (s->law.friction) {
+    /* the normal multiplier, and the tangential traction less K_c's part: at a sticking pair that
+       of its elastic stick (K_c: k_t on the raw gap), at a slipping one the return map linearised
+       at the last solve's gap (K_c: its stiffness across the slip direction) */
+    for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+      const PetscInt   pair = c->elem[gp / 4].pair;
+      const PetscReal *n = &c->gpNormal[3 * gp], *lam = &s->lambda[3 * gp], *d = &s->slipDir[4 * gp];
+      PetscReal       *f = &s->lambdaForce[3 * gp];
+      const PetscReal  ln = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2];
+      if (!s->active[gp]) {
+        f[0] = f[1] = f[2] = 0;
+      } else if (!s->released[gp]) {
+        const PetscReal *a = &s->anchor[3 * gp], *t0 = &s->tractionStart[3 * gp], kt = s->stickStiffness[pair];
+        const PetscReal  an = a[0] * n[0] + a[1] * n[1] + a[2] * n[2], t0n = t0[0] * n[0] + t0[1] * n[1] + t0[2] * n[2];
+        for (PetscInt k = 0; k < 3; k++) f[k] = ln * n[k] + t0[k] - t0n * n[k] - kt * (a[k] - an * n[k]);
+      } else {
+        PetscReal across[3];
+        BoltAcross(n, d, &s->gap[3 * gp], across);
+        for (PetscInt k = 0; k < 3; k++) f[k] = lam[k] - d[3] * across[k];
+      }
+    }
+    return s->lambdaForce;
+  }
   if (!s->anchored) return s->lambda;
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt pair = c->elem[e].pair;
@@ -438,11 +509,6 @@ const PetscReal *BoltContactStateForceMultipliers(BoltContactState *s)
       const PetscInt  gp = 4 * e + q;
       const PetscReal eT = s->active[gp] ? BoltContactStateEpsT(s, gp, pair) : 0;
       for (PetscInt k = 0; k < 3; k++) s->lambdaForce[3 * gp + k] = s->lambda[3 * gp + k] - eT * s->anchor[3 * gp + k];
-      if (s->law.friction && s->active[gp] && s->released[gp]) { /* K_c acts across d on the slip since the step's start */
-        PetscReal across[3];
-        BoltAcross(&c->gpNormal[3 * gp], &s->slipDir[4 * gp], &s->slipStart[3 * gp], across);
-        for (PetscInt k = 0; k < 3; k++) s->lambdaForce[3 * gp + k] -= s->slipDir[4 * gp + 3] * across[k];
-      }
     }
   }
   return s->lambdaForce;
@@ -475,69 +541,62 @@ PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpe
   PetscFunctionReturn(0);
 }
 
-/* Coulomb, a pair that stays closed, after an augmentation (lambda holds its trial traction):
-   - sticking, with its tangential traction beyond the cone mu |t_N|: it slips, its traction on
-     the cone along the trial's tangential part; K_c holds it across that direction with the
-     tangential penalty until its slip is known;
-   - slipping, but not forward along its slip direction over the step: it sticks where it was at
-     the start of the step;
-   - slipping on: its traction goes on the cone along its slip over the step, mu |t_N| s/|s|; K_c
-     takes twice the derivative of that traction across s, 2 mu |t_N| / |s| (a damped Newton
-     step), when the direction has turned by more than -contact_slip_angle_tolerance or the
-     stiffness is off by more than -contact_slip_stiffness_ratio (else it keeps the last one: the
-     traction is updated all the same).
-   *moved is the tangential traction's change over |t_N|. Returns whether K_c changed. */
+/* Coulomb, a pair that stays closed, after an augmentation (lambda holds its traction by its
+   state's law, BoltContactStateTrial): the return map of its elastic stick's trial traction.
+   - sticking, with the trial beyond the cone mu |t_N|: it slips, its traction on the cone along
+     the trial;
+   - slipping, with the trial back inside the cone, turned against the slip direction d, or no
+     longer pressed: it sticks, with the trial as its traction;
+   - slipping on: its traction stays on the cone along the trial. K_c's stiffness across the
+     direction d is the return map's derivative, k_t mu |t_N| / |trial| (none along d: the law's
+     Newton step); it is renewed when the trial has turned by more than
+     -contact_slip_angle_tolerance or the derivative is off by more than
+     -contact_slip_stiffness_ratio (else K_c keeps the last one, a quasi-Newton step).
+   *moved is how far the traction is from the one the solve linearised [Pa] (zero at a sticking
+   pair: its law is linear). Returns whether K_c changed. */
 static PetscBool BoltContactStateStickSlip(BoltContactState *s, PetscInt gp, PetscInt pair, PetscReal *moved)
 {
-  const PetscReal *n  = &s->set->gpNormal[3 * gp];
+  const PetscReal *n  = &s->set->gpNormal[3 * gp], *f = &s->lambdaForce[3 * gp];
   PetscReal       *t  = &s->lambda[3 * gp], *d = &s->slipDir[4 * gp];
   const PetscReal  tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], bound = s->set->friction[pair] * PetscMax(-tn, 0.0);
-  PetscReal        tt[3], slip[3], len, ls;
+  const PetscReal  kt = s->stickStiffness[pair];
+  PetscReal        trial[3], len;
 
   *moved = 0;
-  for (PetscInt k = 0; k < 3; k++) tt[k] = t[k] - tn * n[k];
-  len = PetscSqrtReal(tt[0] * tt[0] + tt[1] * tt[1] + tt[2] * tt[2]);
+  BoltContactStateStickTrial(s, gp, pair, trial);
+  len = BoltNorm3(trial);
   if (!s->released[gp]) {
-    if (len <= bound * (1 + BOLT_FRICTION_MARGIN)) return PETSC_FALSE;
+    if (len <= bound * (1 + BOLT_FRICTION_MARGIN) || s->stickOnly) return PETSC_FALSE;
     for (PetscInt k = 0; k < 3; k++) {
-      d[k] = tt[k] / len;
+      d[k] = trial[k] / len;
       t[k] = tn * n[k] + bound * d[k];
     }
-    d[3]            = s->epsT[pair];
+    d[3]            = kt * bound / len;
     s->released[gp] = PETSC_TRUE;
     return PETSC_TRUE;
   }
-  BoltContactStateSlip(s, gp, slip);
-  ls = PetscSqrtReal(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
-  if (slip[0] * d[0] + slip[1] * d[1] + slip[2] * d[2] <= 0 || tn >= 0 || ls == 0) {
-    const PetscReal *g0  = &s->slipStart[3 * gp];
-    PetscReal       *a   = &s->anchor[3 * gp], *g = &s->gap[3 * gp];
-    const PetscReal  g0n = g0[0] * n[0] + g0[1] * n[1] + g0[2] * n[2];
-    for (PetscInt k = 0; k < 3; k++) {
-      const PetscReal raw = g[k] + a[k];
-      a[k]                = g0[k] - g0n * n[k];
-      g[k]                = raw - a[k];
-    }
-    s->anchored     = PETSC_TRUE;
+  /* back inside the cone; or the trial has turned against the slip (Newton's step jumped across
+     the cone's inside, where a point reversing its slip sticks: from there it slips again if it
+     must, else the two directions take turns) */
+  if (len <= bound || tn >= 0 || trial[0] * d[0] + trial[1] * d[1] + trial[2] * d[2] <= 0) {
+    for (PetscInt k = 0; k < 3; k++) t[k] = tn * n[k] + trial[k];
     s->released[gp] = PETSC_FALSE;
     return PETSC_TRUE;
   }
   {
-    const PetscReal ka     = 2 * bound / ls;
-    const PetscReal cosine = (slip[0] * d[0] + slip[1] * d[1] + slip[2] * d[2]) / ls;
+    const PetscReal ka     = kt * bound / len;
+    const PetscReal cosine = (trial[0] * d[0] + trial[1] * d[1] + trial[2] * d[2]) / len;
     const PetscBool turn   = (PetscBool)(cosine < 1 - 0.5 * PetscSqr(s->slipAngleTolerance) || ka > s->slipStiffnessRatio * d[3] || ka * s->slipStiffnessRatio < d[3]);
-    PetscReal       across[3];
-    if (turn) {
-      for (PetscInt k = 0; k < 3; k++) d[k] = slip[k] / ls;
-      d[3] = ka;
-    }
-    /* the multiplier that, with K_c's stiffness across d acting on the slip, gives the cone's
-       traction at this slip: the next solve is a (quasi-)Newton step on the friction law */
-    BoltAcross(n, d, slip, across);
+    PetscReal       across[3], fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
+    /* the tangential traction the solve saw: its force's, plus K_c's across d */
+    BoltAcross(n, d, &s->gap[3 * gp], across);
     for (PetscInt k = 0; k < 3; k++) {
-      const PetscReal v = bound * slip[k] / ls;
-      *moved            = PetscMax(*moved, PetscAbsReal(v - tt[k]) / -tn);
-      t[k]              = tn * n[k] + v - d[3] * across[k];
+      const PetscReal seen = f[k] - fn * n[k] + d[3] * across[k];
+      *moved               = PetscMax(*moved, PetscAbsReal(t[k] - tn * n[k] - seen));
+    }
+    if (turn) {
+      for (PetscInt k = 0; k < 3; k++) d[k] = trial[k] / len;
+      d[3] = ka;
     }
     return turn;
   }
@@ -550,7 +609,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
 {
   BoltContactSet *c = s->set;
   PetscInt        loc[3] = {0, 0, 0}, glob[3];
-  PetscReal       fric   = 0;
+  PetscReal       fric = 0, press = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
@@ -579,6 +638,10 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
           s->dirty[e] = PETSC_TRUE;
         }
         fric = PetscMax(fric, moved);
+        if (s->law.friction) { /* the pressure scale of the friction's convergence test */
+          const PetscReal *t = &s->lambda[3 * gp], *n = &c->gpNormal[3 * gp];
+          press = PetscMax(press, -(t[0] * n[0] + t[1] * n[1] + t[2] * n[2]));
+        }
       }
       /* a sticking pair that opened and now closes to slide is in a new state, not a cycle */
       if (s->law.strict && now && !s->active[gp] && !s->released[gp]) loc[2]++;
@@ -596,7 +659,11 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
     }
   }
   PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
-  if (s->law.friction) PetscCall(MPIU_Allreduce(&fric, &s->frictionChange, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  if (s->law.friction) {
+    PetscReal both[2] = {fric, press}, glob2[2];
+    PetscCall(MPIU_Allreduce(both, glob2, 2, MPIU_REAL, MPI_MAX, c->mesh->comm));
+    s->frictionChange = glob2[1] > 0 ? glob2[0] / glob2[1] : 0;
+  }
   *nchanged  = glob[0];
   s->nactive = glob[1];
   if (glob[0] || s->law.friction) BoltContactStateChanged(s); /* friction moves slipping pairs' multipliers */
@@ -617,7 +684,9 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool ac
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     s->active[gp] = s->activeOld[gp] = s->activeOlder[gp] = active[gp];
-    s->released[gp] = (PetscBool)(s->law.strict && (released ? released[gp] : !active[gp])); /* an open point will slide */
+    /* an open point will slide; under friction every closed pair starts sticking, and its trial
+       traction decides again whether it slips */
+    s->released[gp] = (PetscBool)(s->law.strict && !s->law.friction && (released ? released[gp] : !active[gp]));
     if (active[gp]) nact++;
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
@@ -667,7 +736,7 @@ PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
   }
   for (PetscInt e = 0; e < c->nelem; e++) {
     if (!s->dirty[e]) continue;
-    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], s->epsT[c->elem[e].pair], &s->active[4 * e], &s->released[4 * e], BoltContactStateSlipDirs(s, e), &s->Ke[576 * e]));
+    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], BoltContactStateStickStiffness(s, c->elem[e].pair), &s->active[4 * e], &s->released[4 * e], BoltContactStateSlipDirs(s, e), &s->Ke[576 * e]));
     s->dirty[e] = PETSC_FALSE;
     changed++;
   }

@@ -27,7 +27,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
 PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
 {
   MPI_Comm    comm = nm->op->comm;
-  const char *hist[] = {"step", "sine", "ramp", "BoltLoadHistory", "BOLT_LOAD_", NULL};
+  const char *hist[] = {"step", "sine", "ramp", "release", "BoltLoadHistory", "BOLT_LOAD_", NULL};
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Time integration", "boltrom");
@@ -35,9 +35,10 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsReal("-ts_end", "End time [s]", NULL, nm->tEnd, &nm->tEnd, NULL));
   PetscCall(PetscOptionsReal("-newmark_beta", "Newmark beta", NULL, nm->beta, &nm->beta, NULL));
   PetscCall(PetscOptionsReal("-newmark_gamma", "Newmark gamma", NULL, nm->gamma, &nm->gamma, NULL));
-  PetscCall(PetscOptionsEnum("-load_history", "Time history of the external load: step (on from t > 0), sine, or ramp (rising linearly to the full load at -load_ramp_time, then held)", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
+  PetscCall(PetscOptionsEnum("-load_history", "Time history of the external load: step (on from t > 0), sine, ramp (rising linearly to the full load at -load_ramp_time, then held) or release (the ramp, removed at -load_release_time: a ring-down from a static deflection)", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
   PetscCall(PetscOptionsReal("-load_frequency", "Frequency of the sine load [Hz]", NULL, nm->frequency, &nm->frequency, NULL));
   PetscCall(PetscOptionsReal("-load_ramp_time", "Time at which the ramp load reaches its full value [s] (default: -ts_end)", NULL, nm->rampTime, &nm->rampTime, NULL));
+  PetscCall(PetscOptionsReal("-load_release_time", "Time at which the release load drops to zero [s] (-load_history release)", NULL, nm->releaseTime, &nm->releaseTime, NULL));
   PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload (added after the preload is calibrated alone)", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
   PetscCall(PetscOptionsBool("-preload_calibrate", "Scale the preload layer forces so that the bolt clamps with -preload_force (the layer between them is elastic)", NULL, nm->calibratePreload, &nm->calibratePreload, NULL));
   PetscCall(PetscOptionsInt("-snapshot_every", "Keep the displacement field every this many steps for ParaView (0: none)", NULL, nm->snapshotEvery, &nm->snapshotEvery, NULL));
@@ -53,6 +54,7 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCheck(nm->tEnd >= nm->dt, comm, PETSC_ERR_USER_INPUT, "-ts_end (%g) must be at least one time step -ts_dt (%g)", (double)nm->tEnd, (double)nm->dt);
   PetscCheck(nm->beta > 0 && nm->gamma >= 0.5, comm, PETSC_ERR_USER_INPUT, "Newmark needs beta > 0 and gamma >= 1/2 (got %g, %g)", (double)nm->beta, (double)nm->gamma);
   PetscCheck(nm->snapshotEvery >= 0, comm, PETSC_ERR_USER_INPUT, "-snapshot_every must be >= 0");
+  PetscCheck(nm->history != BOLT_LOAD_RELEASE || (nm->rampTime > 0 && nm->releaseTime > nm->rampTime), comm, PETSC_ERR_USER_INPUT, "-load_history release needs 0 < -load_ramp_time < -load_release_time (got %g and %g)", (double)nm->rampTime, (double)nm->releaseTime);
   PetscCheck(nm->rampTime >= 0, comm, PETSC_ERR_USER_INPUT, "-load_ramp_time must be >= 0 (got %g; 0: -ts_end)", (double)nm->rampTime);
   PetscFunctionReturn(0);
 }
@@ -122,6 +124,7 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
 static PetscReal BoltLoadAmplitude(BoltNewmark *nm, PetscReal t)
 {
   if (nm->history == BOLT_LOAD_SINE) return PetscSinReal(2 * PETSC_PI * nm->frequency * t);
+  if (nm->history == BOLT_LOAD_RELEASE) return t < nm->releaseTime ? PetscMax(0.0, PetscMin(1.0, t / nm->rampTime)) : 0.0;
   if (nm->history == BOLT_LOAD_RAMP) return PetscMax(0.0, PetscMin(1.0, t / (nm->rampTime > 0 ? nm->rampTime : nm->tEnd)));
   return t > 0 ? 1.0 : 0.0;
 }
@@ -175,7 +178,7 @@ static PetscErrorCode BoltNewmarkLedger(BoltNewmark *nm, PetscInt n, PetscReal a
     L[BOLT_LEDGER_EXTERNAL * N + n] = L[BOLT_LEDGER_EXTERNAL * N + n - 1] + 0.5 * (amp0 + amp) * PetscRealPart(wl) + PetscRealPart(wp);
     L[BOLT_LEDGER_RAYLEIGH * N + n] = L[BOLT_LEDGER_RAYLEIGH * N + n - 1] + 0.5 * PetscRealPart(dr);
     L[BOLT_LEDGER_CONTACT * N + n]  = PetscRealPart(wc);
-  }
+  } else PetscCall(BoltContactStateStickEnergy(op->state, &nm->stickEnergy0));
   L[BOLT_LEDGER_BALANCE * N + n] = L[BOLT_LEDGER_EXTERNAL * N + n] - (L[BOLT_LEDGER_KINETIC * N + n] - L[BOLT_LEDGER_KINETIC * N]) - (L[BOLT_LEDGER_STRAIN * N + n] - L[BOLT_LEDGER_STRAIN * N]) - L[BOLT_LEDGER_RAYLEIGH * N + n] - L[BOLT_LEDGER_CONTACT * N + n];
   PetscFunctionReturn(0);
 }

@@ -209,9 +209,10 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(PetscMalloc1(2 + nClosed, &extra));
   PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &op)); /* static solves only: no damping */
   s = op->state;
-  /* the basis's static shapes are solved with closed pairs sticking: a load beyond the friction
-     limit has no static equilibrium, and the shapes need none (friction acts online) */
-  s->law.friction = PETSC_FALSE;
+  /* the basis's static shapes are solved with closed pairs sticking (elastically, under friction):
+     a load beyond the friction limit has no static equilibrium, and the shapes need none
+     (friction acts online) */
+  s->stickOnly = PETSC_TRUE;
   /* the calibration scales the preload vector and the load response may scale the load: work
      on copies, the scene's stay as they are */
   PetscCall(VecDestroy(&op->preload));

@@ -76,7 +76,12 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
     PetscCall(BoltJSONReal(j, "strain_change", L[BOLT_LEDGER_STRAIN * N + e] - L[BOLT_LEDGER_STRAIN * N]));
     PetscCall(BoltJSONReal(j, "rayleigh", L[BOLT_LEDGER_RAYLEIGH * N + e]));
     PetscCall(BoltJSONReal(j, "contact_work", L[BOLT_LEDGER_CONTACT * N + e]));
-    PetscCall(BoltJSONReal(j, "friction", nm->dissipated[e]));
+    if (nm->op->state->law.friction) {
+      PetscReal stick;
+      PetscCall(BoltContactStateStickEnergy(nm->op->state, &stick));
+      PetscCall(BoltJSONReal(j, "friction", nm->dissipated[e]));
+      PetscCall(BoltJSONReal(j, "stick_energy_change", stick - nm->stickEnergy0));
+    }
     PetscCall(BoltJSONReal(j, "balance_rel", scale > 0 ? worst / scale : 0));
     PetscCall(BoltJSONEndObject(j));
   }
