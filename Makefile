@@ -102,6 +102,11 @@ stress: deps all
 stress-strict: deps all
 	$(PYTHON) scripts/stress-strict --results
 
+# The joint under Coulomb friction: dissipation per cycle against the load amplitude, hysteresis
+# loops and ring-down backbones at level 0.5 (output/friction-L0.5/, docs/results.md).
+friction: deps all
+	$(PYTHON) scripts/friction-scenes --results
+
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all
 	$(PYTHON) scripts/verify-model --levels 1 2 3 --np $(NP)
@@ -116,5 +121,5 @@ options: deps all
 clean:
 	rm -rf build bin
 
-.PHONY: all deps run test mesh clean tests-c verify bench stress stress-strict paper options
+.PHONY: all deps run test mesh clean tests-c verify bench stress stress-strict paper options friction
 endif

@@ -461,6 +461,7 @@ typedef struct {
   PetscReal       releaseTime; /* -load_release_time: the release history drops the load after it */
   PetscBool       monitor;
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
+  PetscBool       quasiStatic;    /* -ts_quasistatic: steps without inertia or damping */
   PetscBool       calibratePreload;
   PetscReal       preloadTarget, preloadScale;
   PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */

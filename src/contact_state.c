@@ -577,8 +577,9 @@ static PetscBool BoltContactStateStickSlip(BoltContactState *s, PetscInt gp, Pet
   }
   /* back inside the cone; or the trial has turned against the slip (Newton's step jumped across
      the cone's inside, where a point reversing its slip sticks: from there it slips again if it
-     must, else the two directions take turns) */
-  if (len <= bound || tn >= 0 || trial[0] * d[0] + trial[1] * d[1] + trial[2] * d[2] <= 0) {
+     must, else the two directions take turns). Under the loop's anti-cycling rule a slipping
+     pair slips on (the slipping set only grows), on the cone along its trial. */
+  if (!s->closeOnly && (len <= bound || tn >= 0 || trial[0] * d[0] + trial[1] * d[1] + trial[2] * d[2] <= 0)) {
     for (PetscInt k = 0; k < 3; k++) t[k] = tn * n[k] + trial[k];
     s->released[gp] = PETSC_FALSE;
     return PETSC_TRUE;
@@ -586,7 +587,8 @@ static PetscBool BoltContactStateStickSlip(BoltContactState *s, PetscInt gp, Pet
   {
     const PetscReal ka     = kt * bound / len;
     const PetscReal cosine = (trial[0] * d[0] + trial[1] * d[1] + trial[2] * d[2]) / len;
-    const PetscBool turn   = (PetscBool)(cosine < 1 - 0.5 * PetscSqr(s->slipAngleTolerance) || ka > s->slipStiffnessRatio * d[3] || ka * s->slipStiffnessRatio < d[3]);
+    /* (under the anti-cycling rule K_c keeps what it has: only the traction moves) */
+    const PetscBool turn   = (PetscBool)(!s->closeOnly && len > 0 && (cosine < 1 - 0.5 * PetscSqr(s->slipAngleTolerance) || ka > s->slipStiffnessRatio * d[3] || ka * s->slipStiffnessRatio < d[3]));
     PetscReal       across[3], fn = f[0] * n[0] + f[1] * n[1] + f[2] * n[2];
     /* the tangential traction the solve saw: its force's, plus K_c's across d */
     BoltAcross(n, d, &s->gap[3 * gp], across);

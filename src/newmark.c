@@ -39,6 +39,7 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsReal("-load_frequency", "Frequency of the sine load [Hz]", NULL, nm->frequency, &nm->frequency, NULL));
   PetscCall(PetscOptionsReal("-load_ramp_time", "Time at which the ramp load reaches its full value [s] (default: -ts_end)", NULL, nm->rampTime, &nm->rampTime, NULL));
   PetscCall(PetscOptionsReal("-load_release_time", "Time at which the release load drops to zero [s] (-load_history release)", NULL, nm->releaseTime, &nm->releaseTime, NULL));
+  PetscCall(PetscOptionsBool("-ts_quasistatic", "Quasi-static steps: no inertia or damping; each step is the static equilibrium under the load at its time, with the contact and friction state carried from the step before (a load path)", NULL, nm->quasiStatic, &nm->quasiStatic, NULL));
   PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload (added after the preload is calibrated alone)", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
   PetscCall(PetscOptionsBool("-preload_calibrate", "Scale the preload layer forces so that the bolt clamps with -preload_force (the layer between them is elastic)", NULL, nm->calibratePreload, &nm->calibratePreload, NULL));
   PetscCall(PetscOptionsInt("-snapshot_every", "Keep the displacement field every this many steps for ParaView (0: none)", NULL, nm->snapshotEvery, &nm->snapshotEvery, NULL));
@@ -195,7 +196,9 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(VecDuplicate(nm->q, &qOld));
-  PetscCall(BoltDualSetEffective(nm->dual, PETSC_TRUE, a[1], a[4])); /* the next factorisations: a1 M + a4 C + K + K_c */
+  /* the next factorisations: a1 M + a4 C + K + K_c, or K + K_c for quasi-static steps (still
+     steps of a history: the loop carries the contact state and the friction from one to the next) */
+  PetscCall(BoltDualSetEffective(nm->dual, PETSC_TRUE, nm->quasiStatic ? 0 : a[1], nm->quasiStatic ? 0 : a[4]));
   nm->tOnlineBefore = nm->tCheckpoint = 0;
   /* counters from here on describe the transient; the static solve keeps its own */
   nm->staticFactorizations = nm->dual->factorizations;
@@ -219,12 +222,15 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     nm->step = n;
     /* rhs = F(t) + M (a1 q + a2 v + a3 a) + C (a4 q + a5 v + a6 a) */
     PetscCall(VecCopy(nm->q, qOld));
-    PetscCall(VecCopy(nm->q, nm->work));
-    PetscCall(VecAXPBYPCZ(nm->work, a[2], a[3], a[1], nm->v, nm->acc));
-    PetscCall(MatMult(op->M, nm->work, nm->rhs));
-    PetscCall(VecCopy(nm->q, nm->work));
-    PetscCall(VecAXPBYPCZ(nm->work, a[5], a[6], a[4], nm->v, nm->acc));
-    PetscCall(MatMultAdd(op->C, nm->work, nm->rhs, nm->rhs));
+    if (nm->quasiStatic) PetscCall(VecZeroEntries(nm->rhs));
+    else {
+      PetscCall(VecCopy(nm->q, nm->work));
+      PetscCall(VecAXPBYPCZ(nm->work, a[2], a[3], a[1], nm->v, nm->acc));
+      PetscCall(MatMult(op->M, nm->work, nm->rhs));
+      PetscCall(VecCopy(nm->q, nm->work));
+      PetscCall(VecAXPBYPCZ(nm->work, a[5], a[6], a[4], nm->v, nm->acc));
+      PetscCall(MatMultAdd(op->C, nm->work, nm->rhs, nm->rhs));
+    }
     PetscCall(VecAXPY(nm->rhs, amp, op->load));
     PetscCall(VecAXPY(nm->rhs, 1.0, op->preload));
     nm->dual->step = n;
@@ -236,6 +242,11 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     PetscCall(VecCopy(nm->v, nm->vOld));
     PetscCall(VecAXPBYPCZ(nm->v, (1 - nm->gamma) * nm->dt, nm->gamma * nm->dt, 1.0, nm->acc, nm->work));
     PetscCall(VecCopy(nm->work, nm->acc));
+    if (nm->quasiStatic) { /* no motion between equilibria */
+      PetscCall(VecZeroEntries(nm->v));
+      PetscCall(VecZeroEntries(nm->vOld));
+      PetscCall(VecZeroEntries(nm->acc));
+    }
     nm->probeTime[n] = t;
     if (nm->snapshotEvery > 0 && n % nm->snapshotEvery == 0) {
       PetscCall(VecCopy(nm->q, nm->snap[nm->nsnap]));

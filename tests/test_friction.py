@@ -145,3 +145,23 @@ def test_non_numeric_friction_is_refused(blocks, tmp_path):
     assert proc.returncode != 0
     assert "-contact_friction" in proc.stderr or "high" in proc.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_quasistatic_steps_carry_the_load_path(blocks, tmp_path):
+    """-ts_quasistatic: each step the static equilibrium at its load. Below the cone (T up to
+    mu N / 2) nothing slips and the path is linear in the load (every step proportional to the
+    last); with no motion, the external work is the strain energy plus the elastic sticks' energy.
+    Both to 1e-9, with the normal gaps closed to 1e-16 m (at the default 1e-9 of an edge the
+    normal tractions' work over those gaps is 7e-5 of the external work here)."""
+    s = run_summary(["-mesh", blocks] + BLOCK + ["-load_force", str(0.5 * MU * N), "-load_history", "ramp", "-ts_quasistatic",
+                                                 "-ts_dt", "0.1", "-ts_end", "1", "-contact_tol_penetration", "1e-16",
+                                                 "-output_dir", tmp_path], tmp_path)
+    h = history(tmp_path)
+    assert h["slipping"].max() == 0
+    u = h["probe"] - h["probe"][0]
+    steps = np.arange(len(u)) / (len(u) - 1)
+    assert np.max(np.abs(u - steps * u[-1])) <= 1e-9 * abs(u[-1])
+    e = s["fom"]["energy"]
+    assert e["kinetic_change"] == 0 and e["rayleigh"] == 0
+    assert e["external_work"] == pytest.approx(e["strain_change"] + e["stick_energy_change"], rel=1e-9)
+    assert e["friction"] == pytest.approx(0, abs=1e-12 * e["external_work"])
