@@ -37,7 +37,7 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, law)); /* an unknown law fails here, before any solve */
   c->penaltyFactor = law->penaltyFactor;
   c->quadrature    = law->strict ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
-  PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m] (default: the law's, strict 3e7, stick 200)", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
+  PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m] (default: the law's, strict 3e7, coulomb 1e6, stick 200)", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
   {
     const char *const reclose[] = {"slide", "stick"};
     PetscInt          rule      = c->reanchor ? 1 : 0;
