@@ -134,10 +134,12 @@ def test_unreachable_cone_is_elastic_stick_and_tends_to_the_strict_law(joint_sma
     (["-contact_law", "stick", "-contact_upper_lower_friction", "0.2"], ["-contact_upper_lower_friction", "coulomb"]),
     (["-contact_law", "coulomb", "-contact_reclose", "slide"], ["-contact_reclose slide", "coulomb"]),
     (["-contact_law", "coulomb", "-contact_stick_stiffness_factor", "0"], ["-contact_stick_stiffness_factor", "> 0"]),
+    (["-contact_law", "coulomb", "-rom", "true", "-rom_n_ccm", "10"], ["-rom_n_ccm 0 -rom_n_jim 0", "coulomb"]),
 ])
 def test_bad_friction_input(blocks, tmp_path, args, words):
     """A negative coefficient, a coefficient for a law without friction, frictionless re-closing
-    with friction, no elastic stick: one line, non-zero exit, nothing written."""
+    with friction, no elastic stick, friction in the interface-reduced ROM: one line, non-zero
+    exit, nothing written."""
     expect_error(["-mesh", blocks, "-fom", "-rom", "false", "-modal_nev", "0"] + args, tmp_path, *words)
 
 
