@@ -261,6 +261,7 @@ PetscErrorCode BoltContactStateStickEnergy(BoltContactState *, PetscReal *);
 PetscErrorCode BoltContactStateContactWork(BoltContactState *, PetscReal *);
 #define BOLT_FRICTION_MARGIN 1e-6 /* a sticking pair slips once its traction is beyond the cone by this fraction */
 PetscErrorCode BoltContactStateDissipated(BoltContactState *, PetscReal *);
+PetscErrorCode BoltContactStateSetTotals(BoltContactState *, PetscReal, PetscReal);
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
 PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);

@@ -252,6 +252,9 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
     for (PetscInt i = 0; i <= step; i++) nm->ledger[r * (nm->nsteps + 1) + i] = h[k++];
   for (PetscInt i = 0; i < nsnap; i++) nm->snapTime[i] = h[k++];
   PetscCall(PetscFree(h));
+  /* the contact tractions' work and the friction's dissipation so far go on from the histories'
+     totals (the state sums them per rank: the first rank takes them) */
+  PetscCall(BoltContactStateSetTotals(op->state, nm->ledger[BOLT_LEDGER_CONTACT * (nm->nsteps + 1) + step], nm->dissipated[step]));
   PetscCall(PetscPrintf(comm, "%s: restarted from %s at step %" PetscInt_FMT ", t = %g s\n", op->name, file, nm->step, (double)(nm->step * nm->dt)));
   PetscFunctionReturn(0);
 }

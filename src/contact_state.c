@@ -452,6 +452,19 @@ PetscErrorCode BoltContactStateContactWork(BoltContactState *s, PetscReal *work)
   PetscFunctionReturn(0);
 }
 
+/* Sets the work of the contact tractions and the friction's dissipation so far [J], totals over
+   all ranks (a restart): the first rank holds them. Collective. */
+PetscErrorCode BoltContactStateSetTotals(BoltContactState *s, PetscReal contactWork, PetscReal dissipated)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(s->set->mesh->comm, &rank));
+  s->contactWork = rank ? 0 : contactWork;
+  s->dissipated  = rank ? 0 : dissipated;
+  PetscFunctionReturn(0);
+}
+
 /* The energy the slipping pairs dissipated so far [J], over all ranks. */
 PetscErrorCode BoltContactStateDissipated(BoltContactState *s, PetscReal *energy)
 {

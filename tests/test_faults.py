@@ -74,6 +74,9 @@ def test_restart_reproduces_the_uninterrupted_run(restart_runs):
     for m in ("fom", "rom"):
         assert s_full[m]["factorizations"] <= s_rest[m]["factorizations"] <= s_full[m]["factorizations"] + 1, m
         assert s_rest[m]["solves"] == s_full[m]["solves"], m
+    # and so does the FOM's energy accounting (the contact work before the checkpoint included)
+    for key in ("external_work", "contact_work", "balance_rel"):
+        assert s_rest["fom"]["energy"][key] == pytest.approx(s_full["fom"]["energy"][key], rel=1e-6, abs=1e-12), key
 
 
 def test_restart_on_other_ranks(restart_runs):

@@ -64,6 +64,22 @@ def test_block_sticks_until_mu_n_then_slides_as_a_rigid_body(blocks, tmp_path):
     assert_energy_balance(s["fom"])
 
 
+def test_restart_carries_the_dissipation_and_the_contact_work(blocks, tmp_path):
+    """A ramp past the onset of slip, stopped after the block has slipped and continued from its
+    checkpoint on 2 ranks: the energy accounting at the end is the uninterrupted run's (friction,
+    the contact tractions' work, the balance), not the part after the restart."""
+    ramp = ["-mesh", blocks] + BLOCK + ["-load_force", str(1.5 * MU * N), "-load_history", "ramp",
+                                        "-load_ramp_time", "2e-4", "-ts_dt", "5e-6"]
+    whole = run_summary(ramp + ["-ts_end", "2e-4", "-output_dir", tmp_path / "whole"], tmp_path, name="whole")
+    part = ramp + ["-output_dir", tmp_path / "part", "-checkpoint_every", "35"]
+    first = run_summary(part + ["-ts_end", "1.75e-4"], tmp_path, name="first")
+    assert first["fom"]["energy"]["friction"] > 0.05 * whole["fom"]["energy"]["friction"]  # it slipped before
+    rest = run_summary(part + ["-ts_end", "2e-4", "-restart"], tmp_path, ranks=2, name="rest")
+    for key in ("friction", "contact_work", "external_work", "stick_energy_change"):
+        assert rest["fom"]["energy"][key] == pytest.approx(whole["fom"]["energy"][key], rel=1e-9), key
+    assert rest["fom"]["energy"]["balance_rel"] <= 1e-6
+
+
 def test_rom_follows_the_frictional_fom(blocks, tmp_path):
     """The ROM without interface reduction (the contact DOFs are its inputs) on the ramp: the same
     law in the same loop, so the same history to 1e-5 and the same dissipation to 1e-5."""
