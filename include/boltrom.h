@@ -212,6 +212,7 @@ typedef struct {
   PetscBool       anchored;       /* some local point has a non-zero anchor */
   const PetscBool *mayChange;     /* per point, or NULL (all): the points whose state may change (a ROM's: those of its opening shapes) */
   PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
+  PetscBool       holdContact;    /* the closed and open points stay so (a kept active set), but under friction still stick or slip */
   PetscBool      *dirty;          /* element whose activity or penalty changed since its Ke was built */
   PetscReal      *Ke;             /* 576 per element: stiffness of its active Gauss points (made when first needed) */
   Mat             Kc;             /* contact stiffness in the global layout (COO; made when first needed) */
@@ -282,6 +283,13 @@ static inline void BoltContactStateChanged(BoltContactState *s)
 {
   s->version++;
   s->lambdaZero = PETSC_FALSE;
+}
+/* The multipliers hold the tractions of the last solve: the strict laws' active-set loop, and
+   friction with a penalty normal (the interface-reduced ROM), where the normal part is the
+   penalty's traction and the tangential one the return map's. */
+static inline PetscBool BoltContactStateLambdaIsTraction(const BoltContactState *s)
+{
+  return (PetscBool)(s->law.strict && (s->augment || s->law.friction));
 }
 /* The tangential penalty at point gp of a pair: none where the point slides (released). */
 static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)

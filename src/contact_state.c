@@ -237,7 +237,8 @@ static void BoltContactStateTrial(const BoltContactState *s, PetscInt gp, PetscI
 
   if (s->law.friction) {
     const PetscReal *lam = &s->lambda[3 * gp];
-    const PetscReal  tn  = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2] + s->epsN[pair] * (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]);
+    /* (a penalty normal, the interface-reduced ROM's, has no multiplier: P g.n is all of it) */
+    const PetscReal  tn  = (s->augment ? lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2] : 0) + s->epsN[pair] * (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]);
     PetscReal        tt[3], scale = 1;
     BoltContactStateStickTrial(s, gp, pair, tt);
     if (s->released[gp]) {
@@ -257,7 +258,10 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
 {
   BoltContactSet *c = s->set;
   PetscReal       change = 0, size = 0, nchanged = 0, pen = 0, pen2 = 0, sums[3], glob[4];
-  PetscBool       update = s->augment;
+  /* under friction the multipliers take the tractions with a penalty normal too: the sticks'
+     and slips' tangential tractions are history the loop carries */
+  const PetscBool take   = (PetscBool)(s->augment || s->law.friction);
+  PetscBool       update = take;
 
   PetscFunctionBeginUser;
   /* the penalty law sets the multipliers to zero (no trial traction): nothing to update once
@@ -280,7 +284,7 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
       PetscReal       *lam = &s->lambda[3 * gp], t[3] = {0, 0, 0};
       const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
       if (update) {
-        if (s->active[gp] && s->augment) BoltContactStateTrial(s, gp, pair, t);
+        if (s->active[gp] && take) BoltContactStateTrial(s, gp, pair, t);
         for (PetscInt k = 0; k < 3; k++) {
           change += PetscSqr(t[k] - lam[k]);
           size += PetscSqr(t[k]);
@@ -288,7 +292,7 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
           lam[k] = t[k];
         }
       }
-      if (s->active[gp]) {
+      if (s->active[gp] && s->augment) { /* (a penalty's penetration is its law, not a violation) */
         const PetscReal gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
         if (s->law.strict && !s->released[gp] && !s->law.friction) pen2 = PetscMax(pen2, g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
         else pen = PetscMax(pen, !s->law.strict ? -gn : PetscAbsReal(gn));
@@ -300,13 +304,13 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   sums[1] = size;
   sums[2] = nchanged; /* the count goes with the sums */
   /* multipliers known to be +0 everywhere stay so under the penalty law: the sums are zero */
-  if (!s->augment && s->lambdaZero) glob[0] = glob[1] = glob[2] = 0;
+  if (!take && s->lambdaZero) glob[0] = glob[1] = glob[2] = 0;
   else PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
   PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
   *maxPenetration = glob[3];
   if (glob[2] > 0) BoltContactStateChanged(s);
-  if (!s->augment) s->lambdaZero = PETSC_TRUE; /* the penalty law has set them to +0 on every rank */
+  if (!take) s->lambdaZero = PETSC_TRUE; /* the penalty law has set them to +0 on every rank */
   PetscFunctionReturn(0);
 }
 
@@ -500,7 +504,7 @@ const PetscReal *BoltContactStateForceMultipliers(BoltContactState *s)
       const PetscInt   pair = c->elem[gp / 4].pair;
       const PetscReal *n = &c->gpNormal[3 * gp], *lam = &s->lambda[3 * gp], *d = &s->slipDir[4 * gp];
       PetscReal       *f = &s->lambdaForce[3 * gp];
-      const PetscReal  ln = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2];
+      const PetscReal  lt = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2], ln = s->augment ? lt : 0; /* (a penalty normal: K_c carries it all) */
       if (!s->active[gp]) {
         f[0] = f[1] = f[2] = 0;
       } else if (!s->released[gp]) {
@@ -510,7 +514,7 @@ const PetscReal *BoltContactStateForceMultipliers(BoltContactState *s)
       } else {
         PetscReal across[3];
         BoltAcross(n, d, &s->gap[3 * gp], across);
-        for (PetscInt k = 0; k < 3; k++) f[k] = lam[k] - d[3] * across[k];
+        for (PetscInt k = 0; k < 3; k++) f[k] = lam[k] + (ln - lt) * n[k] - d[3] * across[k];
       }
     }
     return s->lambdaForce;
@@ -541,7 +545,7 @@ PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpe
       PetscInt   gp = 4 * e + q;
       PetscReal *t  = &c->tau[3 * gp];
       if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
-      else if (s->augment) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
+      else if (BoltContactStateLambdaIsTraction(s)) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
       else BoltContactStateTrial(s, gp, pair, t);
     }
   }
@@ -639,7 +643,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
       {
         const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
         const PetscReal  band = s->bandTraction[pair];
-        if (s->mayChange && !s->mayChange[gp]) now = s->active[gp];
+        if ((s->mayChange && !s->mayChange[gp]) || s->holdContact) now = s->active[gp];
         else if (s->active[gp]) now = (s->closeOnly || tnOpen[gp] < band) ? PETSC_TRUE : PETSC_FALSE;
         else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > s->activationGap ? PETSC_TRUE : PETSC_FALSE;
       }
@@ -780,7 +784,7 @@ static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt g
     t[0] = t[1] = t[2] = 0;
     return;
   }
-  if (s->law.strict && s->augment) {
+  if (BoltContactStateLambdaIsTraction(s)) {
     for (PetscInt k = 0; k < 3; k++) t[k] = s->lambda[3 * gp + k];
     return;
   }

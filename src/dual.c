@@ -478,7 +478,11 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     d->lastChange      = rel;
     d->lastPenetration = viol;
     if (d->calibrating) PetscCall(BoltDualCalibrate(d, rhs0, q));
-    if (d->keepActiveSet && !d->dynamic) nchanged = 0, cycling = PETSC_FALSE;
+    if (d->keepActiveSet && !d->dynamic && s->law.friction && !s->stickOnly) { /* the set kept; its closed pairs still stick or slip (a ROM's preload, as the FOM's) */
+      s->holdContact = PETSC_TRUE;
+      PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
+      s->holdContact = PETSC_FALSE;
+    } else if (d->keepActiveSet && !d->dynamic) nchanged = 0, cycling = PETSC_FALSE;
     else PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, sets, solves, nchanged, cycling));
     if (!nchanged && viol <= d->tolPenetration && (!s->law.friction || s->frictionChange <= d->tolFriction)) break;
@@ -527,7 +531,7 @@ PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, P
   PetscInt          outer, inner = 0, innerTotal = 0;
 
   PetscFunctionBeginUser;
-  if (s->law.strict && s->augment) {
+  if (BoltContactStateLambdaIsTraction(s)) {
     PetscCall(BoltDualSolveActiveSet(d, rhs0, q, refactor, nouter, ninner));
     PetscFunctionReturn(0);
   }

@@ -95,8 +95,6 @@ static PetscErrorCode BoltRunMain(void)
     PetscCall(BoltRunDestroy(&r));
     PetscFunctionReturn(0);
   }
-  /* the interface-reduced ROM's loop has no frictional update yet (docs/reduction.md) */
-  PetscCheck(!(r.opt.rom && r.contact->law.friction && r.red->opt.nCCM + r.red->opt.nJIM > 0), r.comm, PETSC_ERR_USER_INPUT, "-contact_law coulomb runs in the FOM and in the ROM without interface reduction only: add -rom_n_ccm 0 -rom_n_jim 0, or -rom false");
   PetscCall(BoltPreflightCheck(r.comm, &r.opt, r.red, checkpointBase));
   PetscCall(BoltRunSetUp(&r));
   PetscCall(BoltOptionsCheckUnused(r.comm, BOLT_OPTIONS_BEFORE_SOLVE)); /* the per-pair options too */

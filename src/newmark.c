@@ -175,7 +175,7 @@ static PetscErrorCode BoltNewmarkLedger(BoltNewmark *nm, PetscInt n, PetscReal a
     PetscCall(VecWAXPY(nm->work, 1.0, nm->vOld, nm->v));
     PetscCall(MatMult(op->C, nm->work, nm->rhs)); /* rhs is free until the next step builds it */
     PetscCall(VecDot(nm->dq, nm->rhs, &dr));
-    if (op->state->law.strict && op->state->augment) PetscCall(BoltContactStateContactWork(op->state, &wc));
+    if (BoltContactStateLambdaIsTraction(op->state)) PetscCall(BoltContactStateContactWork(op->state, &wc));
     L[BOLT_LEDGER_EXTERNAL * N + n] = L[BOLT_LEDGER_EXTERNAL * N + n - 1] + 0.5 * (amp0 + amp) * PetscRealPart(wl) + PetscRealPart(wp);
     L[BOLT_LEDGER_RAYLEIGH * N + n] = L[BOLT_LEDGER_RAYLEIGH * N + n - 1] + 0.5 * PetscRealPart(dr);
     L[BOLT_LEDGER_CONTACT * N + n]  = PetscRealPart(wc);

@@ -386,7 +386,7 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   PetscBool          gathered;
 
   PetscFunctionBeginUser;
-  if (op->state->augment) {
+  if (op->state->augment || op->state->law.friction) {
     PetscCall(ROMContactDisplacements(op, q));
     PetscCall(BoltContactSetGapsOf(c, gap));
     PetscFunctionReturn(0);
@@ -459,7 +459,7 @@ static PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
   const PetscInt    ngp = 4 * c->nelem;
 
   PetscFunctionBeginUser;
-  if (s->augment || (s->openTest == BOLT_OPEN_NODAL && !(c->quadrature == BOLT_QUADRATURE_NODAL && rom->flat))) {
+  if (s->augment || s->law.friction || (s->openTest == BOLT_OPEN_NODAL && !(c->quadrature == BOLT_QUADRATURE_NODAL && rom->flat))) {
     PetscCall(BoltContactStateOpenTraction(s, tn));
     PetscFunctionReturn(0);
   }
@@ -647,7 +647,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 
 /* Start the reduced dual loop from the FOM's preloaded state: its multipliers (scaled to this
    preload: with a fixed active set the static contact problem is linear in it) and its active
-   set. They stay frozen (penalty law), so the preload vector is used as built, uncalibrated.
+   set (under friction its active set only). They stay frozen (penalty law), so the preload vector is used as built, uncalibrated.
    nm runs the ROM's operator, whose state has the ROM's penalties. */
 PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal preloadForce)
 {
@@ -670,7 +670,10 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt  gp = 4 * e + q;
       PetscReal lam[3], g[3];
-      if (!rom->active0[gp]) { /* open in the preload: no traction, and none frozen here */
+      /* open in the preload: no traction, and none frozen here. Under friction none anywhere: the
+         normal is the penalty's alone, and the ROM solves its own preloaded state on the FOM's set
+         (its pairs stick or slip there as the FOM's did) */
+      if (!rom->active0[gp] || s->law.friction) {
         s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
         continue;
       }

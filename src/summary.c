@@ -56,7 +56,7 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
     PetscCall(BoltJSONReal(j, "probe_min", mn));
     PetscCall(BoltJSONReal(j, "probe_max", mx));
   }
-  if (full && nm->op->state->law.strict && nm->op->state->augment) {
+  if (full && BoltContactStateLambdaIsTraction(nm->op->state)) {
     /* the energy accounting at the end, and its balance's largest value over the run relative
        to the largest term (the strict laws' loop measures the contact work) */
     const PetscReal *L = nm->ledger;
