@@ -53,7 +53,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   o->staticShapes = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-rom_static_shapes", "The augmented ROM (without interface reduction) too: the FOM's preloaded state, its load response and the -rom_closed_krylov vectors join the basis (they carry the closed joint's inertia, which order 1 misses without them)", NULL, o->staticShapes, &o->staticShapes, NULL));
   o->openingScale = 2; /* the strict law's; resolved by the law when the ROM is built unless given */
-  PetscCall(PetscOptionsReal("-rom_opening_shapes", "With -rom_preload_state or -rom_static_shapes: the node pairs whose contact state this multiple of the scene's load changes statically get opening shapes (the preloaded joint's static response to a unit force pair on each, 3 per pair); 0: none (default 2 under the strict law, 0 under the stick law)", NULL, o->openingScale, &o->openingScale, &o->openingScaleSet));
+  PetscCall(PetscOptionsReal("-rom_opening_shapes", "With -rom_preload_state or -rom_static_shapes: the node pairs whose contact state this multiple of the scene's load changes statically (or, under friction, makes slip) get opening shapes (the preloaded joint's static response to a unit force pair on each, 3 per pair); 0: none (default 2 under the strict law, 0 under the stick law)", NULL, o->openingScale, &o->openingScale, &o->openingScaleSet));
   o->nOpenKrylov = 3;
   PetscCall(PetscOptionsInt("-rom_opening_krylov", "With opening shapes: Krylov vectors of the joint as that load opens it (its active set kept), like -rom_closed_krylov for the preloaded joint", NULL, o->nOpenKrylov, &o->nOpenKrylov, NULL));
   o->holdUnmarked = PETSC_TRUE;
