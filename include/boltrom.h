@@ -627,6 +627,7 @@ typedef struct {
   PetscBool  openingScaleSet;               /* given (else the law's default) */
   PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
   PetscBool  holdUnmarked;                  /* -rom_hold_unmarked */
+  PetscBool  holdUnmarkedSet;               /* given (else true, but false under friction) */
   PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;

@@ -437,6 +437,16 @@ static PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *con
   return contact->law.strict && !rom->augment && rom->nOpeningPairs == 0 ? 2e5 : 1.0;
 }
 
+/* Whether the points outside the opening shapes keep their preloaded state online: yes, unless
+   told, but not under friction. There a pair the static solves leave sticking may still slip in
+   the dynamic response, and the basis gives it some room to (level 0.5, 20 kN and a 300 N step,
+   mu 0.1: held, e_L2 1.2e-3 and 5.2 % less dissipation than the FOM; free, 1.6e-4 and 0.7 %; the
+   same on two other scenes either way). */
+static PetscBool BoltROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact)
+{
+  return o->holdUnmarkedSet ? o->holdUnmarked : (PetscBool)(o->holdUnmarked && !contact->law.friction);
+}
+
 PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM **romp)
 {
   BoltROM       *rom;
@@ -510,7 +520,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         loaded->nOpenKrylov  = rom->nOpenKrylov;
         loaded->bandScale    = BoltROMDefaultBand(o, contact, loaded);
         loaded->updateRank   = o->updateRank;
-        loaded->holdUnmarked = o->holdUnmarked;
+        loaded->holdUnmarked = BoltROMDefaultHold(o, contact);
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
         PetscCall(PetscFree(rom));
@@ -574,7 +584,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   }
   rom->bandScale  = BoltROMDefaultBand(o, contact, rom);
   rom->updateRank = o->updateRank;
-  rom->holdUnmarked = o->holdUnmarked;
+  rom->holdUnmarked = BoltROMDefaultHold(o, contact);
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;

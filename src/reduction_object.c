@@ -57,7 +57,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   o->nOpenKrylov = 3;
   PetscCall(PetscOptionsInt("-rom_opening_krylov", "With opening shapes: Krylov vectors of the joint as that load opens it (its active set kept), like -rom_closed_krylov for the preloaded joint", NULL, o->nOpenKrylov, &o->nOpenKrylov, NULL));
   o->holdUnmarked = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_hold_unmarked", "With opening shapes in the interface-reduced ROM: online, the contact points whose state the opening shapes' static solves did not change keep their preloaded state (the basis cannot open them); false: every point is free", NULL, o->holdUnmarked, &o->holdUnmarked, NULL));
+  PetscCall(PetscOptionsBool("-rom_hold_unmarked", "With opening shapes in the interface-reduced ROM: online, the contact points whose state the opening shapes' static solves did not change keep their preloaded state (the basis cannot open them); false: every point is free (the default under friction, where unmarked points slip too)", NULL, o->holdUnmarked, &o->holdUnmarked, &o->holdUnmarkedSet));
   o->updateRank = -1;
   PetscCall(PetscOptionsInt("-rom_update_rank", "Online: the largest rank of a low-rank (Woodbury) update of the ROM's factorisation after a change of its active set, beyond which it refactorises; 0: refactorise at every change (default: 3/5 of the ROM's dimension under the strict law, 0 under the stick law)", NULL, o->updateRank, &o->updateRank, NULL));
   o->bandScale = 0;
