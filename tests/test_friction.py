@@ -97,9 +97,9 @@ def test_rom_follows_the_frictional_fom(blocks, tmp_path):
 
 def test_interface_reduced_rom_follows_the_frictional_joint(joint_small, tmp_path):
     """The paper's ROM (CCM + JIM, a penalty normal) under friction, on the joint at level 0.5
-    under 5 kN and a 300 N step that makes a third of the points slip: its basis gets the shapes
-    of the pairs the load makes slip, and then follows the FOM to 1e-3 and its dissipation to 2 %
-    (measured 5e-5 and 0.2 %), built on 2 ranks."""
+    under 5 kN and a 300 N step that makes most points slip (558 of 704): its basis gets the
+    shapes of the pairs the load makes slip, and then follows the FOM to 1e-3 and its dissipation
+    to 2 % (measured 5.9e-5 and 0.45 %), built on 2 ranks."""
     mesh, _ = joint_small
     s = run_summary(["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-ts_end", "0.003",
                      "-preload_force", "5000", "-load_force", "300", "-contact_law", "coulomb",
@@ -110,7 +110,7 @@ def test_interface_reduced_rom_follows_the_frictional_joint(joint_small, tmp_pat
     with h5py.File(tmp_path / "run.h5") as f:
         fom, rom = float(f["fom/dissipated"][-1]), float(f["rom/dissipated"][-1])
         slipping = np.max(np.array(f["fom/slipping"]))
-    assert slipping > 0.2 * s["fom"]["contact_points"]
+    assert slipping > 0.5 * s["fom"]["contact_points"]
     assert fom > 0 and rom == pytest.approx(fom, rel=0.02)
     assert s["rom"]["failures"] == 0 and s["fom"]["failures"] == 0
 
