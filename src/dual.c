@@ -478,12 +478,15 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     d->lastChange      = rel;
     d->lastPenetration = viol;
     if (d->calibrating) PetscCall(BoltDualCalibrate(d, rhs0, q));
-    if (d->keepActiveSet && !d->dynamic && s->law.friction && !s->stickOnly) { /* the set kept; its closed pairs still stick or slip (a ROM's preload, as the FOM's) */
-      s->holdContact = PETSC_TRUE;
-      PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
-      s->holdContact = PETSC_FALSE;
-    } else if (d->keepActiveSet && !d->dynamic) nchanged = 0, cycling = PETSC_FALSE;
-    else PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
+    if (d->keepActiveSet && !d->dynamic) {
+      cycling = PETSC_FALSE;
+      nchanged = 0;
+      if (s->law.friction && !s->stickOnly) { /* the set kept; its closed pairs still stick or slip (a ROM's preload, as the FOM's) */
+        s->holdContact = PETSC_TRUE;
+        PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
+        s->holdContact = PETSC_FALSE;
+      }
+    } else PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, sets, solves, nchanged, cycling));
     if (!nchanged && viol <= d->tolPenetration && (!s->law.friction || s->frictionChange <= d->tolFriction)) break;
     /* friction at its rounding floor: the set holds, and the slipping tractions' residual, within

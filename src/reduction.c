@@ -187,13 +187,6 @@ static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBas
   PetscFunctionReturn(0);
 }
 
-/* The FOM's static preloaded equilibrium (the FOM run's if it ran, else solved here): q0, the
-   multipliers (per newton of preload) and the active set, then the static response to the scene's load from that state with the
-   contact closed by the augmented Lagrangian. The interface-reduced ROM cannot close its gaps
-   (fewer DOFs than constraints), so under the penalty law alone it penetrates by micrometres
-   under the clamp and starts from a tilted state; with q0 in its basis and the FOM's multipliers
-   frozen it starts exactly where the FOM does, and the load response gives it one gap-free
-   shape, which lets a stiffer penalty carry the increments without locking. */
 /* Friction: marks the closed points whose traction, sticking, is beyond the cone mu |t_N|: they
    slip under that load, and like a pair that opens, a pair that slips needs its own shapes (the
    interface modes are those of the stuck interface: measured on the joint at level 0.5, 5 kN and
@@ -212,6 +205,13 @@ static void BoltMarkBeyondCone(BoltContactState *s, PetscBool mark[])
   }
 }
 
+/* The FOM's static preloaded equilibrium (the FOM run's if it ran, else solved here): q0, the
+   multipliers (per newton of preload) and the active set, then the static response to the scene's load from that state with the
+   contact closed by the augmented Lagrangian. The interface-reduced ROM cannot close its gaps
+   (fewer DOFs than constraints), so under the penalty law alone it penetrates by micrometres
+   under the clamp and starts from a tilted state; with q0 in its basis and the FOM's multipliers
+   frozen it starts exactly where the FOM does, and the load response gives it one gap-free
+   shape, which lets a stiffer penalty carry the increments without locking. */
 static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscBool keepActive, PetscReal openingScale, PetscInt nOpenKrylov, const BoltPreloadState *shared, PetscInt *nextra, Vec **extrap, Vec *preload)
 {
   BoltOperator     *op;
@@ -298,8 +298,8 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   PetscCall(PetscPrintf(rom->comm, "; load response (load x %g) %g inner iterations\n", (double)raise, (double)nin));
   /* Opening shapes: the node pairs whose state the load changes statically at -openingScale or
      +openingScale x its amplitude (a step load's response swings up to twice its static one, a
-     sine load's to either side); under friction also those it makes slip. The positive one last: its state starts the opened-joint
-     Krylov vectors. */
+     sine load's to either side); under friction also those it makes slip. The positive one
+     last: its state starts the opened-joint Krylov vectors. */
   if (openingScale > 0) {
     PetscCall(PetscCalloc1(4 * c->nelem + 1, &changed));
     for (PetscInt sign = -1; sign <= 1; sign += 2) {

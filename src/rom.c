@@ -647,8 +647,9 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 
 /* Start the reduced dual loop from the FOM's preloaded state: its multipliers (scaled to this
    preload: with a fixed active set the static contact problem is linear in it) and its active
-   set (under friction its active set only). They stay frozen (penalty law), so the preload vector is used as built, uncalibrated.
-   nm runs the ROM's operator, whose state has the ROM's penalties. */
+   set (under friction its active set only). They stay frozen (penalty law), so the preload
+   vector is used as built, uncalibrated. nm runs the ROM's operator, whose state has the ROM's
+   penalties. */
 PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal preloadForce)
 {
   BoltContactSet   *c = rom->contact;
