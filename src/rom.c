@@ -2,8 +2,9 @@
    LAPACK (cheaper than broadcasting the solution), and the contact DOFs reached through the
    rows of the basis: u_c = V_c q_r, F_r = sum_e D_e' f_e and K_cr = sum_e V_e' K_e V_e (as
    D_e' M_e D_e, updated only for elements whose active points changed), with D_e = V_b - V_a at
-   the element's node pairs. Both sums are exact over ranks: the ROM's history has the same bits
-   on any partition. Under the penalty law a time step needs neither u_c nor the sums while the
+   the element's node pairs. Both sums have the same bits on any partition (exact sums over
+   ranks; K_cr under the nodal quadrature by one product every rank makes on the same gathered
+   node pairs), and so has the ROM's history. Under the penalty law a time step needs neither u_c nor the sums while the
    contact state holds: the gaps come from node-pair rows (normal ones on flat surfaces), and
    the forces, K_cr and the opening test's coefficients are kept with the state's version. */
 #include "boltrom.h"
@@ -169,6 +170,133 @@ static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[
   PetscFunctionReturn(0);
 }
 
+/* A changed point of the nodal quadrature: its node pair (global DOFs of the x components on
+   sides b and a, -1 where clamped), its name (4 x element key + corner) and where its record is. */
+typedef struct {
+  PetscInt dofB, dofA, name, pos;
+} ROMPointRecord;
+
+static int ROMPointByPairThenName(const void *x, const void *y)
+{
+  const ROMPointRecord *a = (const ROMPointRecord *)x, *b = (const ROMPointRecord *)y;
+  if (a->dofB != b->dofB) return a->dofB < b->dofB ? -1 : 1;
+  if (a->dofA != b->dofA) return a->dofA < b->dofA ? -1 : 1;
+  return a->name < b->name ? -1 : (a->name > b->name ? 1 : 0);
+}
+
+static int ROMPointByName(const void *x, const void *y)
+{
+  const ROMPointRecord *a = (const ROMPointRecord *)x, *b = (const ROMPointRecord *)y;
+  return a->name < b->name ? -1 : (a->name > b->name ? 1 : 0);
+}
+
+/* K_cr += sum_p D_p' dB_p D_p over the node pairs p whose 3 x 3 blocks changed. Under the nodal
+   quadrature an element's M_e is block diagonal in its four points, and the points of the (up to
+   four) elements at a node pair share its rows D_p of D = V_b - V_a: one term per node pair, and
+   all of them in one BLAS-3 product, instead of an n x n exact sum per element. Every rank
+   gathers the changed points (name, block, rows), sums each node pair's blocks in the order of
+   the points' names and takes the node pairs in the order of their first point's name, then
+   makes the same product on the same data: K_cr has the same bits on any partition. */
+static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty, const PetscInt dirty[], const PetscReal delta[])
+{
+  BoltContactSet *c = rom->contact;
+  const PetscInt  n = rom->n, recLen = 3 + 9 + 3 * n;
+  PetscInt        nsend = 0, total = 0, nrec, npair = 0;
+  PetscMPIInt     size, len, *counts, *displs;
+  PetscReal      *send, *recv, *Dm, *Tm;
+  ROMPointRecord *rec, *first;
+  PetscScalar    *K;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(recLen * 4 * ndirty + 1, &send));
+  for (PetscInt i = 0; i < ndirty; i++) {
+    const PetscInt   e = dirty[i];
+    const PetscReal *d = &delta[144 * i], *D = &rom->De[12 * n * e];
+    for (PetscInt a = 0; a < 4; a++) {
+      PetscReal *r = &send[nsend];
+      PetscBool  changed = PETSC_FALSE;
+      if (c->elem[e].dofs[3 * a] < 0 && c->elem[e].dofs[12 + 3 * a] < 0) continue; /* both nodes clamped */
+      for (PetscInt p = 0; p < 12; p++) /* off the point's own block the nodal M_e is zero */
+        for (PetscInt q = 0; q < 12; q++) {
+          if (p / 3 == a && q / 3 == a) changed = (PetscBool)(changed || d[12 * p + q] != 0);
+          else if ((p / 3 == a || q / 3 == a) && d[12 * p + q] != 0) SETERRQ(rom->comm, PETSC_ERR_PLIB, "nodal contact stiffness couples two points of an element");
+        }
+      if (!changed) continue;
+      r[0] = (PetscReal)c->elem[e].dofs[12 + 3 * a];
+      r[1] = (PetscReal)c->elem[e].dofs[3 * a];
+      r[2] = (PetscReal)(4 * c->elem[e].key + a);
+      for (PetscInt p = 0; p < 3; p++)
+        for (PetscInt q = 0; q < 3; q++) r[3 + 3 * p + q] = d[12 * (3 * a + p) + 3 * a + q];
+      for (PetscInt p = 0; p < 3; p++)
+        for (PetscInt j = 0; j < n; j++) r[12 + n * p + j] = D[3 * a + p + 12 * j];
+      nsend += recLen;
+    }
+  }
+  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
+  PetscCall(PetscMalloc2(size, &counts, size, &displs));
+  PetscCall(PetscMPIIntCast(nsend, &len));
+  PetscCallMPI(MPI_Allgather(&len, 1, MPI_INT, counts, 1, MPI_INT, rom->comm));
+  for (PetscMPIInt p = 0; p < size; p++) {
+    PetscCall(PetscMPIIntCast(total, &displs[p]));
+    total += counts[p];
+  }
+  PetscCall(PetscMalloc1(total + 1, &recv));
+  PetscCallMPI(MPI_Allgatherv(send, len, MPIU_REAL, recv, counts, displs, MPIU_REAL, rom->comm));
+  PetscCall(PetscFree(send));
+  PetscCall(PetscFree2(counts, displs));
+  nrec = total / recLen;
+  PetscCall(PetscMalloc2(nrec + 1, &rec, nrec + 1, &first));
+  for (PetscInt i = 0; i < nrec; i++) {
+    const PetscReal *r = &recv[recLen * i];
+    rec[i].dofB = (PetscInt)r[0];
+    rec[i].dofA = (PetscInt)r[1];
+    rec[i].name = (PetscInt)r[2];
+    rec[i].pos  = recLen * i;
+  }
+  /* the node pairs (the global DOFs group them on any partition; only their names order them) */
+  qsort(rec, (size_t)nrec, sizeof(ROMPointRecord), ROMPointByPairThenName);
+  for (PetscInt i = 0; i < nrec; i++) {
+    if (i > 0 && rec[i].dofB == rec[i - 1].dofB && rec[i].dofA == rec[i - 1].dofA) continue;
+    first[npair]     = rec[i];
+    first[npair].pos = i; /* its points: rec[pos ...] while the pair holds */
+    npair++;
+  }
+  qsort(first, (size_t)npair, sizeof(ROMPointRecord), ROMPointByName);
+  /* Dm (n x 3m) and Tm = Dm blockdiag(dB_p) */
+  PetscCall(PetscMalloc2(3 * n * npair + 1, &Dm, 3 * n * npair + 1, &Tm));
+  for (PetscInt k = 0; k < npair; k++) {
+    PetscReal       dB[9];
+    const PetscReal *r0 = &recv[rec[first[k].pos].pos];
+    PetscCall(PetscArraycpy(dB, r0 + 3, 9));
+    for (PetscInt i = first[k].pos + 1; i < nrec && rec[i].dofB == first[k].dofB && rec[i].dofA == first[k].dofA; i++)
+      for (PetscInt l = 0; l < 9; l++) dB[l] += recv[rec[i].pos + 3 + l];
+    PetscCall(PetscArraycpy(&Dm[3 * n * k], r0 + 12, 3 * n));
+    for (PetscInt q = 0; q < 3; q++)
+      for (PetscInt j = 0; j < n; j++) Tm[3 * n * k + n * q + j] = r0[12 + j] * dB[q] + r0[12 + n + j] * dB[3 + q] + r0[12 + 2 * n + j] * dB[6 + q];
+  }
+  PetscCall(PetscFree(recv));
+  PetscCall(PetscFree2(rec, first));
+  if (npair > 0) {
+    PetscBLASInt bn, bk;
+    PetscScalar  one = 1.0, zero = 0.0, *dK = rom->dK;
+    PetscCall(PetscBLASIntCast(n, &bn));
+    PetscCall(PetscBLASIntCast(3 * npair, &bk));
+    PetscCallBLAS("BLASgemm", BLASgemm_("N", "T", &bn, &bn, &bk, &one, Tm, &bn, Dm, &bn, &zero, dK, &bn));
+    /* its upper triangle into both halves: K_cr stays exactly symmetric */
+    PetscCall(MatDenseGetArray(rom->Kcr, &K));
+    for (PetscInt l = 0; l < n; l++)
+      for (PetscInt j = 0; j <= l; j++) {
+        K[j + n * l] += dK[j + n * l];
+        if (j != l) K[l + n * j] += dK[j + n * l];
+      }
+    PetscCall(MatDenseRestoreArray(rom->Kcr, &K));
+    PetscCall(MatAssemblyBegin(rom->Kcr, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(rom->Kcr, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(PetscFree2(Dm, Tm));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
 {
   BoltROM          *rom = (BoltROM *)op->ctx;
@@ -206,7 +334,8 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
     dirty[ndirty++] = e;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
-  if (bound > 0) {
+  if (bound > 0 && c->quadrature == BOLT_QUADRATURE_NODAL) PetscCall(ROMContactStiffnessNodePairs(rom, ndirty, dirty, delta));
+  else if (bound > 0) {
     /* K_cr += sum_e D_e' (M_new - M_old) D_e: per element by BLAS (the same call on the same data
        on any partition), summed exactly over its upper triangle */
     PetscBLASInt bn, b12 = 12;
