@@ -1,5 +1,6 @@
 """The scenes that open part of the joint (paper-step otherwise: step load at t > 0, probe u_z at
-the load point), shared by scripts/rom-opening and scripts/bench-contact --scene. The third field
+the load point), shared by scripts/rom-opening and scripts/bench-contact --scene; and the
+frictional scenes of the ROM under Coulomb friction (bench-contact --scene). The third field
 says whether the ROM's opening shapes were tuned looking at the scene: yes (their scale and
 Krylov vectors), sign (only their taking the load's minus side too) or no."""
 
@@ -12,4 +13,15 @@ SCENES = [  # (name, options, whether the opening shapes' defaults were chosen l
                    "-probe_component", "0"], "no"),
     ("P5k-F300y", ["-preload_force", "5000", "-load_force", "300", "-load_direction", "0,1,0", "-probe_component", "1"], "sign"),
     ("P20k-S1k", ["-preload_force", "20000", "-load_force", "1000", "-load_history", "sine", "-load_frequency", "200"], "sign"),
+]
+
+# Coulomb friction, mu 0.1 on every pair, level 0.5's figures in docs/results.md "Coulomb friction";
+# tuned: the slip shapes were added looking at the first scene
+FRICTION = ["-contact_law", "coulomb", "-contact_friction", "0.1"]
+FRICTION_SCENES = [
+    ("mu0.1-P5k-F300", FRICTION + ["-preload_force", "5000", "-load_force", "300", "-ts_end", "0.02"], "yes"),
+    ("mu0.1-P20k-F300", FRICTION + ["-preload_force", "20000", "-load_force", "300", "-ts_end", "0.02"], "no"),
+    ("mu0.1-P5k-S100x", FRICTION + ["-preload_force", "5000", "-load_force", "100", "-load_direction", "1,0,0",
+                                    "-probe_component", "0", "-load_history", "sine", "-load_frequency", "50",
+                                    "-ts_end", "0.04"], "no"),
 ]
