@@ -31,7 +31,7 @@ HEADERS  := $(wildcard include/*.h)
 
 WARN     := -Wall -Wextra -Wno-unused-parameter -Werror=implicit-function-declaration -Werror=implicit-int -Werror=return-type
 CFLAGS_B := -O2 -g $(WARN) -Iinclude $(SLEPC_CC_INCLUDES)
-LDLIBS_B := $(SLEPC_LIB) $(PETSC_LIB) -lmetis -lm
+LDLIBS_B := $(SLEPC_LIB) $(PETSC_LIB) -lmetis -lptscotch -lscotch -lm
 
 .DEFAULT_GOAL := all
 all: bin/boltrom $(TEST_BIN)
