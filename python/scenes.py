@@ -13,6 +13,8 @@ SCENES = [  # (name, options, whether the opening shapes' defaults were chosen l
                    "-probe_component", "0"], "no"),
     ("P5k-F300y", ["-preload_force", "5000", "-load_force", "300", "-load_direction", "0,1,0", "-probe_component", "1"], "sign"),
     ("P20k-S1k", ["-preload_force", "20000", "-load_force", "1000", "-load_history", "sine", "-load_frequency", "200"], "sign"),
+    ("P2k-F300", ["-preload_force", "2000", "-load_force", "300"], "no"),
+    ("P5k-C300", ["-preload_force", "5000", "-load_force", "300", "-load_group", "corner_point"], "no"),
 ]
 
 # Coulomb friction, mu 0.1 on every pair, level 0.5's figures in docs/results.md "Coulomb friction";
