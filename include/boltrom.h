@@ -520,6 +520,9 @@ void           BoltExactSumRemove(BoltExactSum *, const PetscReal[], const Petsc
 PetscErrorCode BoltExactSumEnd(BoltExactSum *, MPI_Comm, PetscReal[]);
 PetscErrorCode BoltExactSumDestroy(BoltExactSum *);
 
+/* ------------------------------------------------------------------ gather.c */
+PetscErrorCode BoltGatherAll(MPI_Comm, MPI_Datatype, const void *, PetscInt, void *, PetscInt *, PetscInt *, PetscInt *);
+
 /* ------------------------------------------------------------------ reduction.c, rom.c */
 /* The reduced model: projected matrices (replicated on every rank, small and dense), the rows
    of the basis at this rank's contact DOFs and at the probe, and the reduced contact stiffness

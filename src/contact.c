@@ -129,10 +129,8 @@ static PetscErrorCode BoltContactGatherNodes(BoltContactSet *c, const char group
   Vec                coords;
   PetscSection       cs;
   const PetscScalar *x;
-  PetscMPIInt        size, nbytes, *counts, *displs;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(m->comm, &size));
   PetscCall(BoltMeshGroupVertices(m, group, PETSC_TRUE, &nv, &verts));
   PetscCall(PetscMalloc1(nv + 1, &mine));
   PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
@@ -146,16 +144,9 @@ static PetscErrorCode BoltContactGatherNodes(BoltContactSet *c, const char group
   }
   PetscCall(VecRestoreArrayRead(coords, &x));
   PetscCall(PetscFree(verts));
-  PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
-  nbytes = (PetscMPIInt)(nv * sizeof(BoltNode));
-  PetscCallMPI(MPI_Allgather(&nbytes, 1, MPI_INT, counts, 1, MPI_INT, m->comm));
-  displs[0] = 0;
-  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
-  ntot = displs[size] / (PetscInt)sizeof(BoltNode);
-  PetscCall(PetscMalloc1(ntot + 1, &all));
-  PetscCallMPI(MPI_Allgatherv(mine, nbytes, MPI_BYTE, all, counts, displs, MPI_BYTE, m->comm));
+  PetscCall(BoltGatherAll(m->comm, MPI_BYTE, mine, nv * (PetscInt)sizeof(BoltNode), &all, NULL, &ntot, NULL));
+  ntot /= (PetscInt)sizeof(BoltNode);
   qsort(all, (size_t)ntot, sizeof(BoltNode), BoltNodeCompareX);
-  PetscCall(PetscFree2(counts, displs));
   PetscCall(PetscFree(mine));
   *nnodes = ntot;
   *nodes  = all;

@@ -11,10 +11,8 @@ static PetscErrorCode BoltNodePairs(BoltContactSet *c, const PetscBool mask[], P
 {
   MPI_Comm    comm = c->mesh->comm;
   PetscInt    nloc = 0, npairs, *pairs, *all;
-  PetscMPIInt size, *counts, *displs, mycount;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(PetscMalloc1(8 * c->nelem + 2, &pairs));
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4; a++) {
@@ -23,14 +21,8 @@ static PetscErrorCode BoltNodePairs(BoltContactSet *c, const PetscBool mask[], P
       pairs[2 * nloc + 1] = c->elem[e].dofs[12 + 3 * a];
       nloc++;
     }
-  PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
-  mycount = (PetscMPIInt)(2 * nloc);
-  PetscCallMPI(MPI_Allgather(&mycount, 1, MPI_INT, counts, 1, MPI_INT, comm));
-  displs[0] = 0;
-  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
-  PetscCall(PetscMalloc1(displs[size] + 2, &all));
-  PetscCallMPI(MPI_Allgatherv(pairs, mycount, MPIU_INT, all, counts, displs, MPIU_INT, comm));
-  npairs = displs[size] / 2;
+  PetscCall(BoltGatherAll(comm, MPIU_INT, pairs, 2 * nloc, &all, NULL, &npairs, NULL));
+  npairs /= 2;
   /* unique by the pair (a, b): sort on a key (a and b are both global DOFs, or -1 if clamped);
      the global list can be longer than this rank's */
   PetscCall(PetscFree(pairs));
@@ -54,7 +46,6 @@ static PetscErrorCode BoltNodePairs(BoltContactSet *c, const PetscBool mask[], P
     PetscCall(PetscFree2(key, perm));
   }
   PetscCall(PetscFree(all));
-  PetscCall(PetscFree2(counts, displs));
   *npairsOut = npairs;
   *pairsOut  = pairs;
   PetscFunctionReturn(0);

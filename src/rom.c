@@ -203,7 +203,6 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
   BoltContactSet *c = rom->contact;
   const PetscInt  n = rom->n, recLen = 3 + 9 + 3 * n;
   PetscInt        nsend = 0, total = 0, nrec, npair = 0;
-  PetscMPIInt     size, len, *counts, *displs;
   PetscReal      *send, *recv, *Dm, *Tm;
   ROMPointRecord *rec, *first;
   PetscScalar    *K;
@@ -233,18 +232,8 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
       nsend += recLen;
     }
   }
-  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
-  PetscCall(PetscMalloc2(size, &counts, size, &displs));
-  PetscCall(PetscMPIIntCast(nsend, &len));
-  PetscCallMPI(MPI_Allgather(&len, 1, MPI_INT, counts, 1, MPI_INT, rom->comm));
-  for (PetscMPIInt p = 0; p < size; p++) {
-    PetscCall(PetscMPIIntCast(total, &displs[p]));
-    total += counts[p];
-  }
-  PetscCall(PetscMalloc1(total + 1, &recv));
-  PetscCallMPI(MPI_Allgatherv(send, len, MPIU_REAL, recv, counts, displs, MPIU_REAL, rom->comm));
+  PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, send, nsend, &recv, NULL, &total, NULL));
   PetscCall(PetscFree(send));
-  PetscCall(PetscFree2(counts, displs));
   nrec = total / recLen;
   PetscCall(PetscMalloc2(nrec + 1, &rec, nrec + 1, &first));
   for (PetscInt i = 0; i < nrec; i++) {

@@ -54,7 +54,6 @@ struct BoltROMUpdate_s {
   /* gathering */
   PetscReal   *send, *recv;
   PetscInt     sendAlloc, recvAlloc, recAlloc;
-  PetscMPIInt *counts, *displs;
   PetscInt    *name, *perm;      /* per gathered record: its name, and where it starts */
   PetscInt     updates, references;
 };
@@ -148,8 +147,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   ROMReference   *ref = &u->ref[r];
   BoltContactSet *c   = rom->contact;
   const PetscInt  n = rom->n, recLen = 2 + 36, LD = 3 * u->alloc;
-  PetscInt        nsend = 0, nrec = 0, total = 0, nnew = 0, m;
-  PetscMPIInt     size, rank, len;
+  PetscInt        nsend = 0, nrec = 0, total = 0, nnew = 0, m, mine;
 
   PetscFunctionBeginUser;
   *done = PETSC_FALSE;
@@ -176,16 +174,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
         nsend += 3 * n;
       }
     }
-  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
-  PetscCallMPI(MPI_Comm_rank(rom->comm, &rank));
-  PetscCall(PetscMPIIntCast(nsend, &len));
-  PetscCallMPI(MPI_Allgather(&len, 1, MPI_INT, u->counts, 1, MPI_INT, rom->comm));
-  for (PetscMPIInt p = 0; p < size; p++) {
-    PetscCall(PetscMPIIntCast(total, &u->displs[p]));
-    total += u->counts[p];
-  }
-  PetscCall(ROMUpdateGrow(&u->recv, &u->recvAlloc, total + 1));
-  PetscCallMPI(MPI_Allgatherv(u->send, len, MPIU_REAL, u->recv, u->counts, u->displs, MPIU_REAL, rom->comm));
+  PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, u->send, nsend, &u->recv, &u->recvAlloc, &total, &mine));
   for (PetscInt pos = 0; pos < total; nrec++) pos += recLen + (u->recv[pos + 1] < 0 ? 3 * n : 0);
   if (nrec > u->recAlloc) {
     u->recAlloc = PetscMax(nrec, 2 * u->recAlloc);
@@ -227,7 +216,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
       for (PetscInt i = 0; i < mo; i++) ref->G[j + LD * i] = ref->G[i + LD * j];
   }
   /* the owners note their new slots' places (their records, in the order they were sent) */
-  for (PetscInt e = 0, pos = u->displs[rank]; e < c->nelem; e++)
+  for (PetscInt e = 0, pos = mine; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
       if (!ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) continue;
       if (ref->slotOf[4 * e + a] < 0) {
@@ -410,22 +399,19 @@ PetscErrorCode BoltROMUpdateCreate(BoltROM *rom, BoltOperator *op, PetscInt maxR
 {
   BoltROMUpdate *u;
   const PetscInt n = rom->n, ne = rom->contact->nelem;
-  PetscMPIInt    size;
 
   PetscFunctionBeginUser;
   PetscCall(BoltROMUpdateDestroy(&rom->update));
   if (maxRank <= 0) PetscFunctionReturn(0);
   PetscCall(PetscNew(&u));
   u->maxRank = maxRank;
-  u->alloc   = PetscMax(1, (3 * n) / 5); /* slots per pool: beyond some 2n columns a new reference is cheaper */ /* beyond n columns in a pool, a new reference is cheaper */
+  u->alloc   = PetscMax(1, (3 * n) / 5); /* slots per pool: beyond some 2n columns a new reference is cheaper */
   u->cur     = -1;
   PetscCall(PetscMalloc2(144 * ne + 1, &u->Kcur, ne + 1, &u->devRun));
   PetscCall(PetscArraycpy(u->Kcur, rom->Ke, 144 * ne)); /* K_cr is built: its blocks are the current ones */
   for (PetscInt e = 0; e < ne; e++) u->devRun[e] = PETSC_FALSE;
   PetscCall(PetscMalloc5(u->alloc, &u->act, u->alloc, &u->first, u->alloc, &u->last, u->alloc, &u->node, 36 * u->alloc, &u->S));
   PetscCall(PetscMalloc6(3 * n * u->alloc, &u->Ua, 3 * n * u->alloc, &u->Za, 9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w, 3 * u->alloc, &u->piv));
-  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
-  PetscCall(PetscMalloc2(size, &u->counts, size, &u->displs));
   rom->update    = u;
   op->ops.factor = ROMUpdateFactor;
   op->ops.solve  = ROMUpdateSolve;
@@ -456,7 +442,6 @@ PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **up)
   PetscCall(PetscFree2(u->Kcur, u->devRun));
   PetscCall(PetscFree5(u->act, u->first, u->last, u->node, u->S));
   PetscCall(PetscFree6(u->Ua, u->Za, u->C, u->t, u->w, u->piv));
-  PetscCall(PetscFree2(u->counts, u->displs));
   PetscCall(PetscFree(u->send));
   PetscCall(PetscFree(u->recv));
   PetscCall(PetscFree2(u->name, u->perm));
