@@ -3,6 +3,7 @@
 #include "boltrom.h"
 #include <metis.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <scotch/scotch.h> /* for SCOTCH_randomSeed: the one PT-Scotch that PETSc links */
 
 static const char *defaultPartMaterials = "plate1:aluminium,plate2:aluminium,plate:aluminium,bolt:steel,washer_head:steel,washer_nut:steel,nut:steel,block:steel,upper:steel,lower:steel";
@@ -206,8 +207,10 @@ static PetscErrorCode BoltMeshDistribute(BoltMesh *m, DM *dm)
     IS               partition;
     const PetscInt  *pts;
 
-    /* Debian's Scotch seeds its generator from the clock: without a fixed seed the partition,
-       and with it the rounding of every parallel sum, changed from run to run */
+    /* Debian's Scotch seeds its generator from the clock and splits its work over threads:
+       with either, the partition, and with it the rounding of every parallel sum, changed from
+       run to run. One thread (unless the user set SCOTCH_PTHREAD_NUMBER) and a fixed seed. */
+    PetscCheck(setenv("SCOTCH_PTHREAD_NUMBER", "1", 0) == 0, PETSC_COMM_SELF, PETSC_ERR_SYS, "setenv failed");
     SCOTCH_randomSeed(17);
     SCOTCH_randomReset();
     PetscCall(PetscPartitionerCreate(m->comm, &ptmp));
