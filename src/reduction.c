@@ -196,6 +196,16 @@ static void BoltMarkBeyondCone(BoltContactState *s, PetscBool mark[])
   }
 }
 
+/* *v becomes a copy of src of its own (an operator's vector that a calibration may scale). */
+static PetscErrorCode BoltVecReplaceByCopy(Vec src, Vec *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(v));
+  PetscCall(VecDuplicate(src, v));
+  PetscCall(VecCopy(src, *v));
+  PetscFunctionReturn(0);
+}
+
 /* The FOM's static preloaded equilibrium (the FOM run's if it ran, else solved here): q0, the
    multipliers (per newton of preload) and the active set, then the static response to the scene's load from that state with the
    contact closed by the augmented Lagrangian. The interface-reduced ROM cannot close its gaps
@@ -220,12 +230,8 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
   s = op->state;
   /* the calibration scales the preload vector and the load response may scale the load: work
      on copies, the scene's stay as they are */
-  PetscCall(VecDestroy(&op->preload));
-  PetscCall(VecDuplicate(loads->preload, &op->preload));
-  PetscCall(VecCopy(loads->preload, op->preload));
-  PetscCall(VecDestroy(&op->load));
-  PetscCall(VecDuplicate(loads->load, &op->load));
-  PetscCall(VecCopy(loads->load, op->load));
+  PetscCall(BoltVecReplaceByCopy(loads->preload, &op->preload));
+  PetscCall(BoltVecReplaceByCopy(loads->load, &op->load));
   PetscCall(BoltDualCreate(op, &dual));
   PetscCall(BoltDualSetFromOptions(dual));
   PetscCall(BoltDualSetUp(dual));
@@ -247,9 +253,7 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
     PetscCall(PetscOptionsGetBool(NULL, NULL, "-preload_calibrate", &calibrate, NULL));
     PetscCall(PetscOptionsGetBool(NULL, NULL, "-static_contact_load", &withLoad, NULL));
     PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &fom));
-    PetscCall(VecDestroy(&fom->preload));
-    PetscCall(VecDuplicate(op->preload, &fom->preload));
-    PetscCall(VecCopy(op->preload, fom->preload));
+    PetscCall(BoltVecReplaceByCopy(op->preload, &fom->preload));
     PetscCall(BoltDualCreate(fom, &fomDual));
     PetscCall(BoltDualSetFromOptions(fomDual));
     PetscCall(BoltDualSetUp(fomDual));
@@ -453,7 +457,7 @@ static PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *con
    same on two other scenes either way). */
 static PetscBool BoltROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact)
 {
-  return o->holdUnmarkedSet ? o->holdUnmarked : (PetscBool)(o->holdUnmarked && !contact->law.friction);
+  return o->holdUnmarkedSet ? o->holdUnmarked : (PetscBool)!contact->law.friction;
 }
 
 PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM **romp)
