@@ -551,19 +551,16 @@ typedef struct {
      (a sixth of the rows of V_c), all that the penalty law's decisions need (the tangential gaps
      act only through the penalty, which is inside K_cr) */
   PetscBool       flat;              /* the normals of all points at each node agree (global): one normal row per node pair, else three rows of D */
-  PetscInt        nGapRows;
+  PetscInt        nGapRows, nLiveRows; /* all rows; the first nLiveRows are those of points that may change */
+  PetscBool       heldRowsDone;      /* the held points' rows were taken once */
   PetscScalar    *Rn;                /* nGapRows x n, column-major */
   PetscInt       *gpRows;            /* 4 per local point: the row of each node it interpolates (-1: none) */
   PetscScalar    *gnRow;             /* nGapRows: scratch */
   PetscReal      *tnC, *tnK;         /* per local point: the opening test's traction is tnC + tnK g.n */
-  /* the whole gaps of the open points that may close and stick (strict law): their rows of D_e,
-     gathered for a state that lasts */
-  PetscInt        nOpen, openCapacity; /* local open points; room for them in Dopen */
-  PetscInt       *openRow;           /* per local point: its first row in Dopen (-1: closed) */
-  PetscScalar    *Dopen, *gOpen;     /* 3 nOpen x n, column-major; 3 nOpen scratch */
-  PetscObjectState openVersion, openSeenVersion; /* of the gathered rows; of the last solve's state */
-  PetscBool       openValid;
-  PetscInt        openSeen;          /* solves in a row with the state openSeenVersion */
+  /* the whole gap of an open point is needed only where it closes (it sticks there): it is taken
+     from the point's rows of D_e when its normal gap is within wholeGapBound x |q|_max of closing,
+     a bound on the rounding between the normal row and the whole gap's normal part */
+  PetscReal      *wholeGapBound;     /* per local point */
   BoltContactSet *contact;
   /* offline figures */
   PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];

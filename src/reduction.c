@@ -664,10 +664,8 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
   PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
-  PetscCall(PetscFree3(rom->gpRows, rom->tnC, rom->tnK));
+  PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
-  PetscCall(PetscFree(rom->openRow));
-  PetscCall(PetscFree2(rom->Dopen, rom->gOpen));
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(rom->marked));

@@ -11,27 +11,27 @@
 #include "boltrom.h"
 #include <petscblaslapack.h>
 
-/* u = A x for a column-major m x n block A of rows of the basis. Each row is summed in the same
-   order whatever its position in the block (a BLAS kernel may treat the rows of a vector block
+/* u = A x for a column-major m x n block A (leading dimension lda) of rows of the basis. Each row
+   is summed in the same order whatever its position in the block (a BLAS kernel may treat the rows of a vector block
    and of its tail differently), so a row gets the same bits on any partition. Where the CPU has
    AVX2 a clone with four rows per vector runs instead: the same products and sums per row (the
    file is compiled without contraction into FMAs), so the same bits. */
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
-static void ROMRowsTimes(PetscInt m, PetscInt n, const PetscScalar *A, const PetscScalar *x, PetscScalar *u)
+static void ROMRowsTimes(PetscInt m, PetscInt n, const PetscScalar *A, PetscInt lda, const PetscScalar *x, PetscScalar *u)
 {
   for (PetscInt i = 0; i < m; i++) u[i] = 0;
   for (PetscInt j = 0; j < n; j += 4) { /* four columns per pass over u, still in order j */
     const PetscInt     nb = PetscMin(4, n - j);
-    const PetscScalar *restrict c0 = A + m * j, x0 = x[j];
+    const PetscScalar *restrict c0 = A + lda * j, x0 = x[j];
     PetscScalar *restrict       uu = u;
     if (nb == 4) {
-      const PetscScalar *restrict c1 = c0 + m, *restrict c2 = c1 + m, *restrict c3 = c2 + m, x1 = x[j + 1], x2 = x[j + 2], x3 = x[j + 3];
+      const PetscScalar *restrict c1 = c0 + lda, *restrict c2 = c1 + lda, *restrict c3 = c2 + lda, x1 = x[j + 1], x2 = x[j + 2], x3 = x[j + 3];
       for (PetscInt i = 0; i < m; i++) uu[i] = uu[i] + c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3;
     } else
       for (PetscInt k = 0; k < nb; k++)
-        for (PetscInt i = 0; i < m; i++) uu[i] += c0[i + m * k] * x[j + k];
+        for (PetscInt i = 0; i < m; i++) uu[i] += c0[i + lda * k] * x[j + k];
   }
 }
 
@@ -47,7 +47,7 @@ static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
   if (!c->nlocal) PetscFunctionReturn(0);
   PetscCall(VecGetArrayRead(q, &x));
   PetscCall(VecGetArray(c->uc, &u));
-  ROMRowsTimes(c->nlocal, rom->n, rom->Vc, x, u);
+  ROMRowsTimes(c->nlocal, rom->n, rom->Vc, c->nlocal, x, u);
   PetscCall(VecRestoreArray(c->uc, &u));
   PetscCall(VecRestoreArrayRead(q, &x));
   PetscFunctionReturn(0);
@@ -461,35 +461,6 @@ static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* The rows of D_e at the node pairs of the open points (three each, column-major), and where
-   each point's rows start. */
-static PetscErrorCode ROMGatherOpenRows(BoltROM *rom, BoltContactState *s)
-{
-  BoltContactSet *c = rom->contact;
-  const PetscInt  n = rom->n, ngp = 4 * c->nelem;
-  PetscInt        m = 0;
-
-  PetscFunctionBeginUser;
-  if (!rom->openRow) PetscCall(PetscMalloc1(ngp + 1, &rom->openRow));
-  for (PetscInt gp = 0; gp < ngp; gp++) rom->openRow[gp] = s->active[gp] ? -1 : 3 * m++;
-  rom->nOpen = m;
-  if (m > rom->openCapacity) { /* kept between gatherings: fresh pages are slow to touch */
-    rom->openCapacity = PetscMax(m, (3 * rom->openCapacity) / 2);
-    PetscCall(PetscFree2(rom->Dopen, rom->gOpen));
-    PetscCall(PetscMalloc2(3 * rom->openCapacity * n + 1, &rom->Dopen, 3 * rom->openCapacity + 1, &rom->gOpen));
-  }
-  for (PetscInt gp = 0; gp < ngp; gp++) {
-    const PetscReal *D = &rom->De[12 * n * (gp / 4) + 3 * (gp % 4)];
-    const PetscInt   i = rom->openRow[gp];
-    if (i < 0) continue;
-    for (PetscInt j = 0; j < n; j++)
-      for (PetscInt k = 0; k < 3; k++) rom->Dopen[i + k + 3 * m * j] = D[12 * j + k];
-  }
-  rom->openVersion = s->version;
-  rom->openValid   = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
 /* The gaps at the local contact points from rows of node-pair differences D = V_b - V_a (a
    sixth or half of the rows of V_c, and free of the cancellation in u_b - u_a), under the
    penalty law: there the multipliers do not take the trial traction, so the gaps only feed the
@@ -502,7 +473,8 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   BoltROM           *rom = (BoltROM *)op->ctx;
   BoltContactSet    *c   = rom->contact;
   const PetscScalar *x;
-  PetscBool          gathered;
+  PetscBool          whole;
+  PetscReal          xmax = 0;
 
   PetscFunctionBeginUser;
   if (op->state->augment || op->state->law.friction) {
@@ -511,24 +483,12 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetArrayRead(q, &x));
-  ROMRowsTimes(rom->nGapRows, rom->n, rom->Rn, x, rom->gnRow);
-  /* the whole gaps of the open pairs that may close and stick (their anchors need them), from
-     their node pairs' rows of D_e: once a state has lasted four solves, from those rows gathered
-     into one block (one product, each row summed in the order of a row alone); before that point
-     by point (a gathering costs a few of those, and a churning set would pay it at every change) */
-  gathered = PETSC_FALSE;
-  if (c->law.strict && c->reanchor && rom->flat && c->quadrature == BOLT_QUADRATURE_NODAL) {
-    gathered = (PetscBool)(rom->openValid && rom->openVersion == op->state->version);
-    if (!gathered) {
-      if (rom->openSeenVersion != op->state->version) rom->openSeen = 0;
-      rom->openSeenVersion = op->state->version;
-      if (++rom->openSeen >= 4) {
-        PetscCall(ROMGatherOpenRows(rom, op->state));
-        gathered = PETSC_TRUE;
-      }
-    }
-    if (gathered) ROMRowsTimes(3 * rom->nOpen, rom->n, rom->Dopen, x, rom->gOpen);
-  }
+  /* the rows of points that may change; those of held points (their state is kept, so no decision
+     reads their gaps) once, for gaps that stay defined */
+  ROMRowsTimes(rom->heldRowsDone ? rom->nLiveRows : rom->nGapRows, rom->n, rom->Rn, rom->nGapRows, x, rom->gnRow);
+  rom->heldRowsDone = PETSC_TRUE;
+  whole = (PetscBool)(c->law.strict && c->reanchor && rom->flat && c->quadrature == BOLT_QUADRATURE_NODAL);
+  for (PetscInt j = 0; j < rom->n && whole; j++) xmax = PetscMax(xmax, PetscAbsReal(PetscRealPart(x[j])));
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     const PetscInt  *r = &rom->gpRows[4 * gp];
     const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp]; /* gpN: 4 per point */
@@ -540,18 +500,22 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
         for (PetscInt a = 0; a < 4; a++)
           if (r[a] >= 0) gn += N[a] * PetscRealPart(rom->gnRow[r[a]]);
       for (PetscInt k = 0; k < 3; k++) g[k] = gn * n[k];
-      /* an open pair that may close sticks where it closes: its anchor needs the whole gap (from
-         its node pair's rows of D_e, in a fixed order: the same bits on any partition) */
-      if (gathered && !op->state->active[gp]) {
-        const PetscInt i = rom->openRow[gp];
-        for (PetscInt k = 0; k < 3; k++) g[k] = PetscRealPart(rom->gOpen[i + k]);
-      } else if (c->law.strict && c->reanchor && !op->state->active[gp] && c->quadrature == BOLT_QUADRATURE_NODAL) {
+      /* an open pair that closes sticks where it closes: its anchor needs the whole gap, from its
+         node pair's rows of D_e in a fixed order (the same bits on any partition). Only where it
+         may close: elsewhere the decision -g.n > activationGap is the same with the normal gap
+         alone, whose rounding differs from the whole gap's by less than the bound. */
+      if (whole && !op->state->active[gp] && (!op->state->mayChange || op->state->mayChange[gp]) && -gn > op->state->activationGap - rom->wholeGapBound[gp] * xmax) {
         const PetscReal *D = &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)];
-        for (PetscInt k = 0; k < 3; k++) {
-          PetscReal v = 0;
-          for (PetscInt j = 0; j < rom->n; j++) v += D[12 * j + k] * PetscRealPart(x[j]);
-          g[k] = v;
+        PetscReal        v0 = 0, v1 = 0, v2 = 0;
+        for (PetscInt j = 0; j < rom->n; j++) {
+          const PetscReal xj = PetscRealPart(x[j]);
+          v0 += D[12 * j] * xj;
+          v1 += D[12 * j + 1] * xj;
+          v2 += D[12 * j + 2] * xj;
         }
+        g[0] = v0;
+        g[1] = v1;
+        g[2] = v2;
       }
     } else
       for (PetscInt k = 0; k < 3; k++) {
@@ -621,17 +585,17 @@ static void ROMRowNormal(const PetscReal n[3], PetscReal nr[3])
    the surfaces are flat: at every node the normals of all points around it, over all ranks (the
    nodal area vector sums them), agree with each point's to 1e-12. On flat surfaces one row n' D
    per node pair and rounded point normal (one per node pair), else the three rows of D. */
-static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
+static PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
 {
   BoltContactSet *c = rom->contact;
   const PetscInt  n = rom->n, ngp = 4 * c->nelem;
-  PetscInt       *first, *next, *rowGp, *rowNode, width;
-  PetscBool       flat = PETSC_TRUE;
+  PetscInt       *first, *next, *rowGp, *rowNode, *pos, width;
+  PetscBool       flat = PETSC_TRUE, *live;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscFree3(rom->gpRows, rom->tnC, rom->tnK));
+  PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
-  PetscCall(PetscMalloc3(4 * ngp + 1, &rom->gpRows, ngp + 1, &rom->tnC, ngp + 1, &rom->tnK));
+  PetscCall(PetscMalloc4(4 * ngp + 1, &rom->gpRows, ngp + 1, &rom->tnC, ngp + 1, &rom->tnK, ngp + 1, &rom->wholeGapBound));
   PetscCall(PetscMalloc4(c->nlocal + 1, &first, 4 * ngp + 1, &next, 4 * ngp + 1, &rowGp, 4 * ngp + 1, &rowNode));
   for (PetscInt gp = 0; gp < ngp; gp++) {
     const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
@@ -678,6 +642,30 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
       rom->gpRows[4 * gp + a] = r;
     }
   }
+  /* the rows of node pairs with a point that may change first (live), then the held ones */
+  PetscCall(PetscCalloc2(rom->nGapRows + 1, &live, rom->nGapRows + 1, &pos));
+  for (PetscInt gp = 0; gp < ngp; gp++)
+    for (PetscInt a = 0; a < 4; a++)
+      if (rom->gpRows[4 * gp + a] >= 0 && (!mayChange || mayChange[gp])) live[rom->gpRows[4 * gp + a]] = PETSC_TRUE;
+  rom->nLiveRows = 0;
+  for (PetscInt pass = 0, k = 0; pass < 2; pass++)
+    for (PetscInt r = 0; r < rom->nGapRows; r += width) {
+      if (live[r] != (pass == 0)) continue;
+      pos[r] = k;
+      k += width;
+      if (!pass) rom->nLiveRows = k;
+    }
+  for (PetscInt i = 0; i < 4 * ngp; i++)
+    if (rom->gpRows[i] >= 0) rom->gpRows[i] = pos[rom->gpRows[i]];
+  rom->heldRowsDone = PETSC_FALSE;
+  /* |n' D x - nr' D x| and the two sums' rounding stay below 1e-12 sum_jk |D_kj| |x|_max (n up to
+     a few thousand); 1e-9 leaves room */
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscReal *D = &rom->De[12 * n * (gp / 4) + 3 * (gp % 4)];
+    PetscReal        b = 0;
+    for (PetscInt j = 0; j < n; j++) b += PetscAbsReal(D[12 * j]) + PetscAbsReal(D[12 * j + 1]) + PetscAbsReal(D[12 * j + 2]);
+    rom->wholeGapBound[gp] = 1e-9 * b;
+  }
   PetscCall(PetscMalloc2(rom->nGapRows * n + 1, &rom->Rn, rom->nGapRows + 1, &rom->gnRow));
   for (PetscInt i = 0; i < c->nlocal; i++)
     for (PetscInt r = first[i]; r >= 0; r = next[r]) {
@@ -685,12 +673,13 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom)
       PetscReal        nr[3];
       ROMRowNormal(&c->gpNormal[3 * rowGp[r]], nr);
       for (PetscInt j = 0; j < n; j++) {
-        if (rom->flat) rom->Rn[r + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
+        if (rom->flat) rom->Rn[pos[r] + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
         else
-          for (PetscInt k = 0; k < 3; k++) rom->Rn[r + k + rom->nGapRows * j] = D[12 * j + k];
+          for (PetscInt k = 0; k < 3; k++) rom->Rn[pos[r] + k + rom->nGapRows * j] = D[12 * j + k];
       }
     }
   PetscCall(PetscFree4(first, next, rowGp, rowNode));
+  PetscCall(PetscFree2(live, pos));
   PetscFunctionReturn(0);
 }
 
@@ -722,8 +711,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   PetscCall(MatZeroEntries(rom->Kcr));
-  rom->KcrValid = rom->FrValid = rom->tnValid = rom->openValid = PETSC_FALSE; /* a new state: its versions start afresh */
-  rom->openSeen = 0;
+  rom->KcrValid = rom->FrValid = rom->tnValid = PETSC_FALSE; /* a new state: its versions start afresh */
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscCalloc1(144 * rom->contact->nelem + 1, &rom->Ke));
   PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
@@ -746,13 +734,13 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
       rom->DeMax[e] = mx;
     }
   }
-  PetscCall(ROMSetUpGapRows(rom));
-  op->ops.contactGaps  = ROMContactGaps;
-  op->ops.openTraction = ROMOpenTraction;
   /* with opening shapes, only the points the opening solves changed may change state: the basis
      has no shapes to open the others, and freed they chattered at the washers' rims (the
      augmented ROM, without interface reduction, can open any pair) */
   op->state->mayChange = (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) ? rom->marked : NULL;
+  PetscCall(ROMSetUpGapRows(rom, op->state->mayChange));
+  op->ops.contactGaps  = ROMContactGaps;
+  op->ops.openTraction = ROMOpenTraction;
   /* low-rank updates of the factorisation: by default where the active set is expected to move
      (the strict law's penalty ROM); the stick law's keeps refactorising, as in the paper */
   rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (rom->contact->law.strict && !rom->augment ? (3 * n) / 5 : 0);
