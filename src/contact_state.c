@@ -277,7 +277,7 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   }
   /* (sums in scalars, not in the array handed to MPI: kept in memory they stalled the loop; the
      sticking points' largest |g| as the root of the largest g.g, the same number) */
-  for (PetscInt e = 0; e < c->nelem; e++) {
+  for (PetscInt e = 0; e < c->nelem && (update || s->augment); e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt         gp = 4 * e + q;
@@ -306,7 +306,9 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   /* multipliers known to be +0 everywhere stay so under the penalty law: the sums are zero */
   if (!take && s->lambdaZero) glob[0] = glob[1] = glob[2] = 0;
   else PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
-  PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  /* the penalty law has no violation to measure: zero on every rank, without asking */
+  if (s->augment) PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  else glob[3] = 0;
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
   *maxPenetration = glob[3];
   if (glob[2] > 0) BoltContactStateChanged(s);

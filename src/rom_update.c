@@ -239,15 +239,30 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
     PetscCall(PetscArraycpy(&u->Ua[3 * n * i], &ref->U[3 * n * u->act[i]], 3 * n));
     PetscCall(PetscArraycpy(&u->Za[3 * n * i], &ref->Z[3 * n * u->act[i]], 3 * n));
   }
+  /* column by column of G (its rows of the active slots gathered into t), the three rows of a slot
+     side by side: three independent sums, each in the order l, s */
   for (PetscInt j = 0; j < nrec; j++)
-    for (PetscInt q = 0; q < 3; q++)
-      for (PetscInt i = 0; i < nrec; i++)
-        for (PetscInt p = 0; p < 3; p++) {
-          PetscReal v = (i == j && p == q) ? 1.0 : 0.0;
-          for (PetscInt l = u->first[i]; l <= u->last[i]; l++)
-            for (PetscInt s = 0; s < 3; s++) v += u->S[36 * i + 12 * p + 3 * u->node[l] + s] * ref->G[3 * u->act[l] + s + LD * (3 * u->act[j] + q)];
-          u->C[3 * i + p + m * (3 * j + q)] = v;
-        }
+    for (PetscInt q = 0; q < 3; q++) {
+      const PetscReal *Gc = &ref->G[LD * (3 * u->act[j] + q)];
+      PetscReal       *Cc = &u->C[m * (3 * j + q)];
+      for (PetscInt l = 0; l < nrec; l++)
+        for (PetscInt s = 0; s < 3; s++) u->t[3 * l + s] = Gc[3 * u->act[l] + s];
+      for (PetscInt i = 0; i < nrec; i++) {
+        const PetscReal *Si = &u->S[36 * i];
+        PetscReal        v0 = (i == j && q == 0) ? 1.0 : 0.0, v1 = (i == j && q == 1) ? 1.0 : 0.0, v2 = (i == j && q == 2) ? 1.0 : 0.0;
+        for (PetscInt l = u->first[i]; l <= u->last[i]; l++)
+          for (PetscInt s = 0; s < 3; s++) {
+            const PetscInt  c = 3 * u->node[l] + s;
+            const PetscReal g = u->t[3 * l + s];
+            v0 += Si[c] * g;
+            v1 += Si[12 + c] * g;
+            v2 += Si[24 + c] * g;
+          }
+        Cc[3 * i]     = v0;
+        Cc[3 * i + 1] = v1;
+        Cc[3 * i + 2] = v2;
+      }
+    }
   if (m > 0) {
     PetscBLASInt bm, info;
     PetscCall(PetscBLASIntCast(m, &bm));
