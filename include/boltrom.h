@@ -584,6 +584,7 @@ typedef struct {
   PetscInt        nOpeningPairs; /* node pairs with opening shapes in the basis */
   PetscBool      *marked;        /* 4 per local contact element: the point's state changed in those static solves (NULL: not made) */
   PetscBool       holdUnmarked;  /* -rom_hold_unmarked: online, the other points keep their preloaded state */
+  PetscBool       gapsEverywhere; /* -rom_gaps_everywhere: every point's gaps at every solve (a check) */
   PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
   PetscInt        updateRank;    /* -rom_update_rank as given (-1: the default) */
   PetscInt        updateRankUsed; /* as resolved when the operator was made (0: refactorise) */
@@ -628,6 +629,7 @@ typedef struct {
   PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
   PetscBool  holdUnmarked;                  /* -rom_hold_unmarked */
   PetscBool  holdUnmarkedSet;               /* given (else true, but false under friction) */
+  PetscBool  gapsEverywhere;                /* -rom_gaps_everywhere */
   PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
 } BoltReductionOptions;

@@ -534,6 +534,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         loaded->bandScale    = BoltROMDefaultBand(o, contact, loaded);
         loaded->updateRank   = o->updateRank;
         loaded->holdUnmarked = BoltROMDefaultHold(o, contact);
+        loaded->gapsEverywhere = o->gapsEverywhere;
         PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
         PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
         PetscCall(PetscFree(rom));
@@ -598,6 +599,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   rom->bandScale  = BoltROMDefaultBand(o, contact, rom);
   rom->updateRank = o->updateRank;
   rom->holdUnmarked = BoltROMDefaultHold(o, contact);
+  rom->gapsEverywhere = o->gapsEverywhere;
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;

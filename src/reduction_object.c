@@ -58,6 +58,8 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCall(PetscOptionsInt("-rom_opening_krylov", "With opening shapes: Krylov vectors of the joint as that load opens it (its active set kept), like -rom_closed_krylov for the preloaded joint", NULL, o->nOpenKrylov, &o->nOpenKrylov, NULL));
   o->holdUnmarked = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-rom_hold_unmarked", "With opening shapes in the interface-reduced ROM: online, the contact points whose state the opening shapes' static solves did not change keep their preloaded state (the basis cannot open them); false: every point is free (the default under friction, where unmarked points slip too)", NULL, o->holdUnmarked, &o->holdUnmarked, &o->holdUnmarkedSet));
+  o->gapsEverywhere = PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-rom_gaps_everywhere", "Online, interface-reduced ROM under the strict law: take at every solve the gaps of every point (held ones included) and the whole gap of every open point, not only those a decision reads; the same history, slower (a check of the evaluation that skips them)", NULL, o->gapsEverywhere, &o->gapsEverywhere, NULL));
   o->updateRank = -1;
   PetscCall(PetscOptionsInt("-rom_update_rank", "Online: the largest rank of a low-rank (Woodbury) update of the ROM's factorisation after a change of its active set, beyond which it refactorises; 0: refactorise at every change (default: 3/5 of the ROM's dimension under the strict law, 0 under the stick law)", NULL, o->updateRank, &o->updateRank, NULL));
   o->bandScale = 0;

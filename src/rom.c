@@ -485,7 +485,7 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   PetscCall(VecGetArrayRead(q, &x));
   /* the rows of points that may change; those of held points (their state is kept, so no decision
      reads their gaps) once, for gaps that stay defined */
-  ROMRowsTimes(rom->heldRowsDone ? rom->nLiveRows : rom->nGapRows, rom->n, rom->Rn, rom->nGapRows, x, rom->gnRow);
+  ROMRowsTimes(rom->heldRowsDone && !rom->gapsEverywhere ? rom->nLiveRows : rom->nGapRows, rom->n, rom->Rn, rom->nGapRows, x, rom->gnRow);
   rom->heldRowsDone = PETSC_TRUE;
   whole = (PetscBool)(c->law.strict && c->reanchor && rom->flat && c->quadrature == BOLT_QUADRATURE_NODAL);
   for (PetscInt j = 0; j < rom->n && whole; j++) xmax = PetscMax(xmax, PetscAbsReal(PetscRealPart(x[j])));
@@ -504,7 +504,7 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
          node pair's rows of D_e in a fixed order (the same bits on any partition). Only where it
          may close: elsewhere the decision -g.n > activationGap is the same with the normal gap
          alone, whose rounding differs from the whole gap's by less than the bound. */
-      if (whole && !op->state->active[gp] && (!op->state->mayChange || op->state->mayChange[gp]) && -gn > op->state->activationGap - rom->wholeGapBound[gp] * xmax) {
+      if (whole && !op->state->active[gp] && (rom->gapsEverywhere || ((!op->state->mayChange || op->state->mayChange[gp]) && -gn > op->state->activationGap - rom->wholeGapBound[gp] * xmax))) {
         const PetscReal *D = &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)];
         PetscReal        v0 = 0, v1 = 0, v2 = 0;
         for (PetscInt j = 0; j < rom->n; j++) {
