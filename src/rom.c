@@ -12,10 +12,11 @@
 #include <petscblaslapack.h>
 
 /* u = A x for a column-major m x n block A (leading dimension lda) of rows of the basis. Each row
-   is summed in the same order whatever its position in the block (a BLAS kernel may treat the rows of a vector block
-   and of its tail differently), so a row gets the same bits on any partition. Where the CPU has
-   AVX2 a clone with four rows per vector runs instead: the same products and sums per row (the
-   file is compiled without contraction into FMAs), so the same bits. */
+   is summed in the same order whatever its position in the block (a BLAS kernel may treat the
+   rows of a vector block and of its tail differently), so a row gets the same bits on any
+   partition. Where the CPU has AVX2 a clone with four rows per vector runs instead: the same
+   products and sums per row (the file is compiled without contraction into FMAs), so the same
+   bits. */
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
 __attribute__((target_clones("avx2", "default")))
 #endif
