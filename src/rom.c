@@ -506,17 +506,9 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
          may close: elsewhere the decision -g.n > activationGap is the same with the normal gap
          alone, whose rounding differs from the whole gap's by less than the bound. */
       if (whole && !op->state->active[gp] && (rom->gapsEverywhere || ((!op->state->mayChange || op->state->mayChange[gp]) && -gn > op->state->activationGap - rom->wholeGapBound[gp] * xmax))) {
-        const PetscReal *D = &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)];
-        PetscReal        v0 = 0, v1 = 0, v2 = 0;
-        for (PetscInt j = 0; j < rom->n; j++) {
-          const PetscReal xj = PetscRealPart(x[j]);
-          v0 += D[12 * j] * xj;
-          v1 += D[12 * j + 1] * xj;
-          v2 += D[12 * j + 2] * xj;
-        }
-        g[0] = v0;
-        g[1] = v1;
-        g[2] = v2;
+        PetscScalar whole3[3];
+        ROMRowsTimes(3, rom->n, &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)], 12, x, whole3);
+        for (PetscInt k = 0; k < 3; k++) g[k] = PetscRealPart(whole3[k]);
       }
     } else
       for (PetscInt k = 0; k < 3; k++) {

@@ -134,7 +134,7 @@ def test_xdmf_matches_hdf5(joint_small, tmp_path):
 
 def test_pt_scotch_partition_same_in_every_run(joint_small, tmp_path):
     """The default partitioner gives the same 2-rank partition run after run. Debian's Scotch
-    seeds from the clock and splits its work over threads; before boltrom fixed both, four runs
+    seeds from the clock and splits its work over threads; with either left as it is, four runs
     of this mesh cut 6 or 8 cell faces between the ranks."""
     mesh, _ = joint_small
     cuts = []
