@@ -106,9 +106,12 @@ stress-strict: deps all
 	$(PYTHON) scripts/stress-strict --results
 
 # The joint under Coulomb friction: dissipation per cycle against the load amplitude, hysteresis
-# loops and ring-down backbones at level 0.5 (output/friction-L0.5/, docs/results.md).
+# loops and ring-down backbones at level 0.5 (output/friction-L0.5/, docs/results.md); then the
+# harmonic loads along x and z with the ROM beside the FOM (output/friction-L0.5-rom/, -z-rom/).
 friction: deps all
 	$(PYTHON) scripts/friction-scenes --results
+	$(PYTHON) scripts/friction-scenes --rom --ringdown --results
+	$(PYTHON) scripts/friction-scenes --rom --ringdown --direction z --results
 
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all

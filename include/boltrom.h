@@ -580,6 +580,7 @@ typedef struct {
   PetscReal       bandScale;     /* the ROM's activation band (traction): this times the FOM's */
   PetscInt        nClosed;       /* closed-contact Krylov vectors in the basis */
   PetscReal       openingScale;  /* opening shapes of the pairs this multiple of the load changes (0: none) */
+  PetscReal       slipScale;     /* friction: also of the pairs beyond the cone, sticking, under this multiple */
   PetscInt        nOpenKrylov;   /* opened-joint Krylov vectors with them */
   PetscInt        nOpeningPairs; /* node pairs with opening shapes in the basis */
   PetscBool      *marked;        /* 4 per local contact element: the point's state changed in those static solves (NULL: not made) */
@@ -626,6 +627,7 @@ typedef struct {
   PetscBool  staticShapes;                  /* -rom_static_shapes */
   PetscReal  openingScale;                  /* -rom_opening_shapes: the load's scale whose changed pairs get shapes, 0 none */
   PetscBool  openingScaleSet;               /* given (else the law's default) */
+  PetscReal  slipScale;                     /* -rom_slip_shapes: friction, the load's scale whose pairs beyond the cone get shapes */
   PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
   PetscBool  holdUnmarked;                  /* -rom_hold_unmarked */
   PetscBool  holdUnmarkedSet;               /* given (else true, but false under friction) */

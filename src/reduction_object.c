@@ -54,6 +54,8 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCall(PetscOptionsBool("-rom_static_shapes", "The augmented ROM (without interface reduction) too: the FOM's preloaded state, its load response and the -rom_closed_krylov vectors join the basis (they carry the closed joint's inertia, which order 1 misses without them)", NULL, o->staticShapes, &o->staticShapes, NULL));
   o->openingScale = 2; /* the strict law's; resolved by the law when the ROM is built unless given */
   PetscCall(PetscOptionsReal("-rom_opening_shapes", "With -rom_preload_state or -rom_static_shapes: the node pairs whose contact state this multiple of the scene's load changes statically (or, under friction, makes slip) get opening shapes (the preloaded joint's static response to a unit force pair on each, 3 per pair); 0: none (default 2 under the strict law, 0 under the stick law)", NULL, o->openingScale, &o->openingScale, &o->openingScaleSet));
+  o->slipScale = 4;
+  PetscCall(PetscOptionsReal("-rom_slip_shapes", "Under friction, with opening shapes: the node pairs whose traction, sticking, is beyond the cone under -/+ this multiple of the scene's load get shapes too (the sticking solve's zone beyond the cone is narrower than the slip zone: slip sheds load onto the neighbours); 0: only those beyond it at -rom_opening_shapes", NULL, o->slipScale, &o->slipScale, NULL));
   o->nOpenKrylov = 3;
   PetscCall(PetscOptionsInt("-rom_opening_krylov", "With opening shapes: Krylov vectors of the joint as that load opens it (its active set kept), like -rom_closed_krylov for the preloaded joint", NULL, o->nOpenKrylov, &o->nOpenKrylov, NULL));
   o->holdUnmarked = PETSC_TRUE;
@@ -69,6 +71,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
   PetscCheck(o->staticPenaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_static_penalty_scale must be > 0 (got %g)", (double)o->staticPenaltyScale);
   PetscCheck(o->openingScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_opening_shapes must be >= 0 (got %g)", (double)o->openingScale);
+  PetscCheck(o->slipScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_slip_shapes must be >= 0 (got %g)", (double)o->slipScale);
   PetscCheck(o->nOpenKrylov >= 0 && o->nOpenKrylov <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_opening_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nOpenKrylov);
   PetscCheck(o->updateRank >= -1, comm, PETSC_ERR_USER_INPUT, "-rom_update_rank must be >= 0 (got %" PetscInt_FMT ")", o->updateRank);
   PetscCheck(o->bandScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_band_scale must be > 0 (got %g)", (double)o->bandScale);
