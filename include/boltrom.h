@@ -633,7 +633,11 @@ typedef struct {
   PetscBool  holdUnmarkedSet;               /* given (else true, but false under friction) */
   PetscBool  gapsEverywhere;                /* -rom_gaps_everywhere */
   PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
+  PetscInt   nSnapshotModes;                /* -rom_snapshot_modes: POD modes of the FOM's snapshots of this run, 0 none */
+  PetscReal  snapshotTol;                   /* -rom_snapshot_tol: their smallest singular value, relative */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
+  PetscInt   nFomSnapshots;                 /* the FOM's displacement snapshots of this run (-snapshot_every) */
+  Vec       *fomSnapshots;
 } BoltReductionOptions;
 
 PetscErrorCode BoltROMBuild(BoltReductionOptions *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltROM **);

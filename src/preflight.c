@@ -173,6 +173,13 @@ PetscErrorCode BoltPreflightCheck(MPI_Comm comm, const BoltRunOptions *o, const 
   if (o->rom && red->opt.file[0]) PetscCall(BoltCheckWritableParent(comm, red->opt.file, "-rom_file"));
   if (checkpointBase[0]) PetscCall(BoltCheckWritableParent(comm, checkpointBase, "the checkpoints (-checkpoint_file)"));
   if (o->exportDir[0]) PetscCall(BoltCheckWritableDir(comm, o->exportDir, "-export_matrices"));
+  if (o->rom && red->opt.nSnapshotModes > 0) { /* the modes come from this run's FOM, or from a ROM file built with them */
+    PetscInt  every = 0;
+    PetscBool fileThere = PETSC_FALSE;
+    PetscCall(PetscOptionsGetInt(NULL, NULL, "-snapshot_every", &every, NULL));
+    if (red->opt.file[0]) PetscCall(PetscTestFile(red->opt.file, 'r', &fileThere));
+    PetscCheck((o->fom && every > 0) || fileThere, comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's displacement snapshots of the same run: add -fom true -snapshot_every 1, or give a -rom_file built with them");
+  }
   if (o->summary[0]) PetscCall(BoltMakeParentDir(comm, o->summary));
   if (o->rom && red->opt.file[0]) PetscCall(BoltMakeParentDir(comm, red->opt.file));
   PetscFunctionReturn(0);

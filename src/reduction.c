@@ -1,6 +1,7 @@
 /* Offline reduction: the input matrix B (contact node pairs, load, preload), the second-order
    Krylov basis of boltrom_krylov.h, and the projection onto it (BoltROM). */
 #include "boltrom.h"
+#include <petscblaslapack.h>
 #include "boltrom_krylov.h"
 #include "boltrom_interface.h"
 
@@ -447,6 +448,63 @@ static PetscErrorCode BoltBasisAppend(BV V, const char what[], PetscInt nv, Vec 
   PetscFunctionReturn(0);
 }
 
+/* POD modes of the FOM's displacement snapshots of this run: each snapshot's remainder against
+   the basis, then the leading left singular vectors of the remainders (by the eigenvectors of
+   their Gram matrix, which is small: one column per snapshot), at most nmodes of them and only
+   those whose singular value is above tol of the largest. They give the basis what the FOM did
+   and the static shapes miss, such as the joint's slip fields under friction. */
+static PetscErrorCode BoltSnapshotModes(BV V, PetscInt nsnap, Vec snap[], PetscInt nmodes, PetscReal tol, PetscInt *nout, Vec **modes)
+{
+  BV            X;
+  Mat           G;
+  PetscScalar  *g, *w, *work, *coef;
+  PetscBLASInt  bn, lwork, info;
+  PetscInt      ns = nsnap - 1, k = 0;
+  Vec           x;
+
+  PetscFunctionBeginUser;
+  *nout  = 0;
+  *modes = NULL;
+  if (ns <= 0 || nmodes <= 0) PetscFunctionReturn(0);
+  PetscCall(BVCreate(PetscObjectComm((PetscObject)V), &X));
+  PetscCall(BVSetSizesFromVec(X, snap[0], ns));
+  PetscCall(BVSetFromOptions(X));
+  for (PetscInt j = 0; j < ns; j++) { /* the motion from the preloaded state, less what V spans */
+    PetscBool dep;
+    PetscCall(BVGetColumn(X, j, &x));
+    PetscCall(VecWAXPY(x, -1.0, snap[0], snap[j + 1]));
+    PetscCall(BVOrthogonalizeVec(V, x, NULL, NULL, &dep));
+    PetscCall(BVOrthogonalizeVec(V, x, NULL, NULL, &dep)); /* twice: the remainders are small */
+    PetscCall(BVRestoreColumn(X, j, &x));
+  }
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, ns, ns, NULL, &G));
+  PetscCall(BVDot(X, X, G));
+  PetscCall(MatDenseGetArray(G, &g));
+  PetscCall(PetscBLASIntCast(ns, &bn));
+  lwork = 8 * bn;
+  PetscCall(PetscMalloc3(ns, &w, (size_t)lwork, &work, ns, &coef));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, g, &bn, w, work, &lwork, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed on the snapshots' Gram matrix (info %d)", (int)info);
+  PetscCall(PetscMalloc1(nmodes, modes));
+  for (PetscInt i = ns - 1; i >= 0 && k < nmodes; i--) { /* eigenvalues ascend */
+    if (!(w[i] > tol * tol * w[ns - 1]) || w[i] <= 0) break;
+    for (PetscInt j = 0; j < ns; j++) coef[j] = g[j + (size_t)ns * i] / PetscSqrtReal(w[i]);
+    PetscCall(BVCreateVec(X, &(*modes)[k]));
+    PetscCall(BVSetActiveColumns(X, 0, ns));
+    PetscCall(BVMultVec(X, 1.0, 0.0, (*modes)[k], coef));
+    k++;
+  }
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), "ROM: %" PetscInt_FMT " snapshots, their remainders' singular values relative to the largest:", ns));
+  for (PetscInt i = ns - 1; i >= 0 && i >= ns - k - 1; i--) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), " %.1e", (double)PetscSqrtReal(PetscMax(w[i], 0) / w[ns - 1])));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), " (%" PetscInt_FMT " kept)\n", k));
+  PetscCall(MatDenseRestoreArray(G, &g));
+  PetscCall(PetscFree3(w, work, coef));
+  PetscCall(MatDestroy(&G));
+  PetscCall(BVDestroy(&X));
+  *nout = k;
+  PetscFunctionReturn(0);
+}
+
 /* The ROM's activation band (the tension at which a closed point opens), relative to the FOM's.
    Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
    at the rim of the preloaded zone the FOM's band lets such errors open points the FOM keeps
@@ -455,12 +513,13 @@ static PetscErrorCode BoltBasisAppend(BV V, const char what[], PetscInt nv, Vec 
    interface-reduced ROM without opening shapes cannot resolve tractions at single rim pairs that
    finely (its rim pairs then open and close about a hundred times in paper-step at level 1 while
    the FOM's set holds) and judges with the stick law's band, 2e5 times the strict one. With
-   opening shapes it can open the pairs the load opens, and keeps the strict band (docs/reduction.md).
+   opening shapes, or snapshot modes of the FOM's run, it can open the pairs the load opens, and
+   keeps the strict band (docs/reduction.md).
    Which applies is known once the basis is. */
 static PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom)
 {
   if (o->bandScale > 0) return o->bandScale;
-  return contact->law.strict && !rom->augment && rom->nOpeningPairs == 0 ? 2e5 : 1.0;
+  return contact->law.strict && !rom->augment && rom->nOpeningPairs == 0 && o->nSnapshotModes == 0 ? 2e5 : 1.0;
 }
 
 /* Whether the points outside the opening shapes keep their preloaded state online: yes, unless
@@ -512,7 +571,8 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   /* Opening shapes by default for the interface-reduced ROM under the strict law (the ROM without
      interface reduction has every node pair's force among its inputs; the stick law's scenes are
      the paper's, whose figures stay as they were) */
-  rom->openingScale = staticShapes ? (o->openingScaleSet ? o->openingScale : (contact->law.strict && rom->preloadState ? o->openingScale : 0.0)) : 0;
+  /* ... and none by default with snapshot modes, which carry the openings and slips the FOM made */
+  rom->openingScale = staticShapes ? (o->openingScaleSet ? o->openingScale : (contact->law.strict && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
   rom->nOpenKrylov  = rom->openingScale > 0 ? o->nOpenKrylov : 0;
   rom->slipScale    = rom->openingScale > 0 && contact->law.friction ? o->slipScale : 0;
   staticPenaltyScale = o->staticPenaltyScale > 0 ? o->staticPenaltyScale : PetscMax(1.0, 2e6 / contact->penaltyFactor); /* 2e6 E/m */
@@ -533,6 +593,11 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
       PetscCall(PetscSNPrintf(more, sizeof(more), "; slip shapes at -/+ %g x the load", (double)rom->slipScale));
       PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
     }
+  }
+  if (o->nSnapshotModes > 0) {
+    char more[64];
+    PetscCall(PetscSNPrintf(more, sizeof(more), "; snapshot modes %" PetscInt_FMT " above %g", o->nSnapshotModes, (double)o->snapshotTol));
+    PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
   }
   if (o->file[0]) {
     PetscBool exists, matched;
@@ -614,6 +679,15 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
       PetscCall(VecDestroy(&preloadCalibrated));
     }
     PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
+  }
+  if (o->nSnapshotModes > 0) {
+    Vec     *modes;
+    PetscInt nmodes, added;
+    PetscCheck(o->nFomSnapshots > 1, o->comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's snapshots of the same run: add -fom true -snapshot_every k");
+    PetscCall(BoltSnapshotModes(V, o->nFomSnapshots, o->fomSnapshots, o->nSnapshotModes, o->snapshotTol, &nmodes, &modes));
+    PetscCall(BoltBasisAppend(V, "snapshot modes", nmodes, modes, kry->deflationTol, &added));
+    for (PetscInt k = 0; k < nmodes; k++) PetscCall(VecDestroy(&modes[k]));
+    PetscCall(PetscFree(modes));
   }
   rom->bandScale  = BoltROMDefaultBand(o, contact, rom);
   rom->updateRank = o->updateRank;

@@ -30,6 +30,8 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   o->checkOrthogonality = PETSC_FALSE;
   o->nCCM = o->nJIM = 100; /* the paper's */
   o->fomPreload = NULL;
+  o->nFomSnapshots = 0;
+  o->fomSnapshots  = NULL;
   red->view     = PETSC_FALSE;
   PetscOptionsBegin(comm, NULL, "Reduction", "boltrom");
   PetscCall(PetscOptionsString("-rom_file", "ROM file (HDF5) to reuse if it matches, or to write", NULL, o->file, o->file, sizeof(o->file), NULL));
@@ -53,7 +55,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   o->staticShapes = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-rom_static_shapes", "The augmented ROM (without interface reduction) too: the FOM's preloaded state, its load response and the -rom_closed_krylov vectors join the basis (they carry the closed joint's inertia, which order 1 misses without them)", NULL, o->staticShapes, &o->staticShapes, NULL));
   o->openingScale = 2; /* the strict law's; resolved by the law when the ROM is built unless given */
-  PetscCall(PetscOptionsReal("-rom_opening_shapes", "With -rom_preload_state or -rom_static_shapes: the node pairs whose contact state this multiple of the scene's load changes statically (or, under friction, makes slip) get opening shapes (the preloaded joint's static response to a unit force pair on each, 3 per pair); 0: none (default 2 under the strict law, 0 under the stick law)", NULL, o->openingScale, &o->openingScale, &o->openingScaleSet));
+  PetscCall(PetscOptionsReal("-rom_opening_shapes", "With -rom_preload_state or -rom_static_shapes: the node pairs whose contact state this multiple of the scene's load changes statically (or, under friction, makes slip) get opening shapes (the preloaded joint's static response to a unit force pair on each, 3 per pair); 0: none (default 2 under the strict law, 0 under the stick law or with -rom_snapshot_modes)", NULL, o->openingScale, &o->openingScale, &o->openingScaleSet));
   o->slipScale = 4;
   PetscCall(PetscOptionsReal("-rom_slip_shapes", "Under friction, with opening shapes: the node pairs whose traction, sticking, is beyond the cone under -/+ this multiple of the scene's load get shapes too (the sticking solve's zone beyond the cone is narrower than the slip zone: slip sheds load onto the neighbours); 0: only those beyond it at -rom_opening_shapes", NULL, o->slipScale, &o->slipScale, NULL));
   o->nOpenKrylov = 3;
@@ -64,8 +66,12 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCall(PetscOptionsBool("-rom_gaps_everywhere", "Online, interface-reduced ROM under the strict law: take at every solve the gaps of every point (held ones included) and the whole gap of every open point, not only those a decision reads; the same history, slower (a check of the evaluation that skips them)", NULL, o->gapsEverywhere, &o->gapsEverywhere, NULL));
   o->updateRank = -1;
   PetscCall(PetscOptionsInt("-rom_update_rank", "Online: the largest rank of a low-rank (Woodbury) update of the ROM's factorisation after a change of its active set, beyond which it refactorises; 0: refactorise at every change (default: 3/5 of the ROM's dimension under the strict law, 0 under the stick law)", NULL, o->updateRank, &o->updateRank, NULL));
+  o->nSnapshotModes = 0;
+  PetscCall(PetscOptionsInt("-rom_snapshot_modes", "Append at most this many POD modes of the FOM's displacement snapshots of the same run (-fom true -snapshot_every k) to the basis: the leading singular vectors of what the basis misses of them (they replace the opening and slip shapes by default; a ROM file keeps them for runs at other loads); 0: none", NULL, o->nSnapshotModes, &o->nSnapshotModes, NULL));
+  o->snapshotTol = 1e-6;
+  PetscCall(PetscOptionsReal("-rom_snapshot_tol", "With -rom_snapshot_modes: keep a mode only if its singular value is above this fraction of the snapshots' largest (their remainders' against the basis)", NULL, o->snapshotTol, &o->snapshotTol, NULL));
   o->bandScale = 0;
-  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (a wider band helps on fine meshes and where the load opens the joint, and costs accuracy in paper-step: docs/results.md; default 1, or 2e5 for an interface-reduced ROM under the strict law without opening shapes: its own band is its solver tolerance)", NULL, o->bandScale, &o->bandScale, NULL));
+  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (a wider band helps on fine meshes and where the load opens the joint, and costs accuracy in paper-step: docs/results.md; default 1, or 2e5 for an interface-reduced ROM under the strict law without opening shapes or snapshot modes: its own band is its solver tolerance)", NULL, o->bandScale, &o->bandScale, NULL));
   PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, red->view, &red->view, NULL));
   PetscOptionsEnd();
   PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
@@ -74,6 +80,8 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCheck(o->slipScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_slip_shapes must be >= 0 (got %g)", (double)o->slipScale);
   PetscCheck(o->nOpenKrylov >= 0 && o->nOpenKrylov <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_opening_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nOpenKrylov);
   PetscCheck(o->updateRank >= -1, comm, PETSC_ERR_USER_INPUT, "-rom_update_rank must be >= 0 (got %" PetscInt_FMT ")", o->updateRank);
+  PetscCheck(o->nSnapshotModes >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes must be >= 0 (got %" PetscInt_FMT ")", o->nSnapshotModes);
+  PetscCheck(o->snapshotTol >= 0 && o->snapshotTol < 1, comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_tol must be in [0, 1) (got %g)", (double)o->snapshotTol);
   PetscCheck(o->bandScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_band_scale must be > 0 (got %g)", (double)o->bandScale);
   PetscCheck(o->nClosed >= 0 && o->nClosed <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_closed_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nClosed);
   PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
