@@ -84,9 +84,11 @@ run: deps all $(MESH_LEVEL1)
 # Every FOM setting and the ROMs against a tight reference in one run, on paper-step and on the
 # scenes that open part of the joint (BENCH_SCENES); FOM against ROM per mesh level.
 BENCH_SCENES ?= P5k-F100 P10k-F300 P2k-C300x P5k-F300y
+# frictional scenes (python/scenes.py), at the bench's level
+BENCH_FRICTION_SCENES ?= mu0.1-P5k-S100x
 bench: deps all
 	$(PYTHON) scripts/bench-contact --np $(NP) --level $(LEVEL)
-	for s in $(BENCH_SCENES); do $(PYTHON) scripts/bench-contact --np $(NP) --level $(LEVEL) --scene $$s || exit 1; done
+	for s in $(BENCH_SCENES) $(BENCH_FRICTION_SCENES); do $(PYTHON) scripts/bench-contact --np $(NP) --level $(LEVEL) --scene $$s || exit 1; done
 	$(PYTHON) scripts/bench-rom --np $(NP) --levels $(LEVELS)
 
 # The paper's figures 3-6, table 3 and the eigenfrequency table under the paper's contact law

@@ -583,6 +583,7 @@ typedef struct {
   PetscReal       slipScale;     /* friction: also of the pairs beyond the cone, sticking, under this multiple */
   PetscInt        nOpenKrylov;   /* opened-joint Krylov vectors with them */
   PetscInt        nOpeningPairs; /* node pairs with opening shapes in the basis */
+  PetscInt        nSnapshotModes; /* POD modes of the FOM's snapshots in the basis */
   PetscBool      *marked;        /* 4 per local contact element: the point's state changed in those static solves (NULL: not made) */
   PetscBool       holdUnmarked;  /* -rom_hold_unmarked: online, the other points keep their preloaded state */
   PetscBool       gapsEverywhere; /* -rom_gaps_everywhere: every point's gaps at every solve (a check) */

@@ -686,6 +686,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     PetscCheck(o->nFomSnapshots > 1, o->comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's snapshots of the same run: add -fom true -snapshot_every k");
     PetscCall(BoltSnapshotModes(V, o->nFomSnapshots, o->fomSnapshots, o->nSnapshotModes, o->snapshotTol, &nmodes, &modes));
     PetscCall(BoltBasisAppend(V, "snapshot modes", nmodes, modes, kry->deflationTol, &added));
+    rom->nSnapshotModes = added;
     for (PetscInt k = 0; k < nmodes; k++) PetscCall(VecDestroy(&modes[k]));
     PetscCall(PetscFree(modes));
   }
