@@ -157,7 +157,8 @@ def test_snapshot_modes_of_one_amplitude_carry_the_rom_at_another(joint_small, t
         result[name] = (s, fom, rom)
     s, fom, rom = result["modes"]
     assert s["rom"]["source"] == "file" and s["rom"]["dim"] == train["rom"]["dim"]
-    assert s["rom"]["snapshot_modes"] == train["rom"]["snapshot_modes"] == 80  # one per step, kept through the file
+    assert s["rom"]["snapshot_modes"] == train["rom"]["snapshot_modes"]  # the count kept through the file
+    assert 70 <= train["rom"]["snapshot_modes"] <= 80  # at most one per step (measured 80)
     assert result["none"][0]["rom"]["snapshot_modes"] == 0
     assert s["rom"]["dim"] > result["none"][0]["rom"]["dim"] + 50
     assert s["errors"]["load_point"]["e_L2"] < 1e-3 and rom == pytest.approx(fom, rel=0.02)
