@@ -470,11 +470,10 @@ static PetscErrorCode BoltSnapshotModes(BV V, PetscInt nsnap, Vec snap[], PetscI
   PetscCall(BVSetSizesFromVec(X, snap[0], ns));
   PetscCall(BVSetFromOptions(X));
   for (PetscInt j = 0; j < ns; j++) { /* the motion from the preloaded state, less what V spans */
-    PetscBool dep;
     PetscCall(BVGetColumn(X, j, &x));
     PetscCall(VecWAXPY(x, -1.0, snap[0], snap[j + 1]));
-    PetscCall(BVOrthogonalizeVec(V, x, NULL, NULL, &dep));
-    PetscCall(BVOrthogonalizeVec(V, x, NULL, NULL, &dep)); /* twice: the remainders are small */
+    PetscCall(BVOrthogonalizeVec(V, x, NULL, NULL, NULL));
+    PetscCall(BVOrthogonalizeVec(V, x, NULL, NULL, NULL)); /* twice: the remainders are small */
     PetscCall(BVRestoreColumn(X, j, &x));
   }
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, ns, ns, NULL, &G));
@@ -486,11 +485,11 @@ static PetscErrorCode BoltSnapshotModes(BV V, PetscInt nsnap, Vec snap[], PetscI
   PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, g, &bn, w, work, &lwork, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed on the snapshots' Gram matrix (info %d)", (int)info);
   PetscCall(PetscMalloc1(nmodes, modes));
+  PetscCall(BVSetActiveColumns(X, 0, ns));
   for (PetscInt i = ns - 1; i >= 0 && k < nmodes; i--) { /* eigenvalues ascend */
     if (!(w[i] > tol * tol * w[ns - 1]) || w[i] <= 0) break;
     for (PetscInt j = 0; j < ns; j++) coef[j] = g[j + (size_t)ns * i] / PetscSqrtReal(w[i]);
     PetscCall(BVCreateVec(X, &(*modes)[k]));
-    PetscCall(BVSetActiveColumns(X, 0, ns));
     PetscCall(BVMultVec(X, 1.0, 0.0, (*modes)[k], coef));
     k++;
   }
@@ -519,7 +518,7 @@ static PetscErrorCode BoltSnapshotModes(BV V, PetscInt nsnap, Vec snap[], PetscI
 static PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom)
 {
   if (o->bandScale > 0) return o->bandScale;
-  return contact->law.strict && !rom->augment && rom->nOpeningPairs == 0 && o->nSnapshotModes == 0 ? 2e5 : 1.0;
+  return contact->law.strict && !rom->augment && rom->nOpeningPairs == 0 && rom->nSnapshotModes == 0 ? 2e5 : 1.0;
 }
 
 /* Whether the points outside the opening shapes keep their preloaded state online: yes, unless
