@@ -109,11 +109,15 @@ stress-strict: deps all
 
 # The joint under Coulomb friction: dissipation per cycle against the load amplitude, hysteresis
 # loops and ring-down backbones at level 0.5 (output/friction-L0.5/, docs/results.md); then the
-# harmonic loads along x and z with the ROM beside the FOM (output/friction-L0.5-rom/, -z-rom/).
+# harmonic loads along x and z with the ROM beside the FOM (output/friction-L0.5-rom/, -z-rom/);
+# then eight cycles along x, each cycle's dissipation, with the slip-shape ROM and with the
+# snapshot-mode ROM trained at 300 N (output/friction-L0.5-rom-c8/, -rom-trained300-c8/).
 friction: deps all
 	$(PYTHON) scripts/friction-scenes --results
 	$(PYTHON) scripts/friction-scenes --rom --ringdown --results
 	$(PYTHON) scripts/friction-scenes --rom --ringdown --direction z --results
+	$(PYTHON) scripts/friction-scenes --rom --cycles 8 --amplitudes 10 30 100 300 --ringdown --results
+	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --cycles 8 --amplitudes 10 30 100 300 --ringdown --results
 
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all

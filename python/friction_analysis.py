@@ -10,6 +10,13 @@ def loop_work(load, x):
     return float(np.sum(0.5 * (load[1:] + load[:-1]) * np.diff(x)))
 
 
+def per_cycle(t, d, period, cycles):
+    """The increase of a history d(t) over each of the first cycles of the period, between the
+    samples nearest to the cycles' ends."""
+    ends = [int(np.argmin(np.abs(t - k * period))) for k in range(cycles + 1)]
+    return [float(d[j] - d[i]) for i, j in zip(ends[:-1], ends[1:])]
+
+
 def fit_decay(t, x, omega):
     """Least squares of c + exp(-sigma s) (A cos(omega s) + B sin(omega s)), s = t - mid: c, A, B
     linear, (omega, sigma) by Gauss-Newton from (omega, 0). Returns omega, sigma and the amplitude

@@ -291,10 +291,11 @@ def test_backbone_and_loop_work_on_known_signals():
     frequency, damping ratio and decaying amplitude in every window to 1e-6; with a 533 Hz ripple
     of 2 % (a higher mode, as the joint's ring-downs have) the frequency to 1e-4 and the damping
     ratio to 5 %. An elliptic loop F = A sin(wt), x = a sin(wt - phi) has the work
-    pi A a sin(phi) per cycle (to the trapezoidal rule's 1e-3 at 400 samples)."""
+    pi A a sin(phi) per cycle (to the trapezoidal rule's 1e-3 at 400 samples). A history t^2
+    sampled at 1e-4 s grows by (2k + 1) T^2 over cycle k of period T."""
     import sys
     sys.path.insert(0, str(ROOT / "python"))
-    from friction_analysis import backbone, loop_work
+    from friction_analysis import backbone, loop_work, per_cycle
     f, zeta, dt = 90.0, 0.006, 1e-4
     t = np.arange(0, 0.2, dt)
     wn = 2 * np.pi * f / np.sqrt(1 - zeta ** 2)
@@ -310,3 +311,6 @@ def test_backbone_and_loop_work_on_known_signals():
     s = np.linspace(0, 1, 401)
     A, a, phi = 300.0, 5e-5, 0.3
     assert loop_work(A * np.sin(2 * np.pi * s), a * np.sin(2 * np.pi * s - phi)) == pytest.approx(np.pi * A * a * np.sin(phi), rel=1e-3)
+    T = 0.02
+    t = np.arange(0, 8 * T + 0.5 * dt, dt)
+    assert per_cycle(t, t ** 2, T, 8) == pytest.approx([(2 * k + 1) * T ** 2 for k in range(8)], rel=1e-9)
