@@ -452,7 +452,7 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *, PetscInt, PetscInt, PetscInt,
 PetscErrorCode BoltContactMonitorTension(BoltDual *);
 
 /* ------------------------------------------------------------------ newmark.c */
-typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1, BOLT_LOAD_RAMP = 2, BOLT_LOAD_RELEASE = 3 } BoltLoadHistory;
+typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1, BOLT_LOAD_RAMP = 2, BOLT_LOAD_RELEASE = 3, BOLT_LOAD_SWEEP = 4 } BoltLoadHistory;
 /* The energy accounting of a Newmark run, per step (rows of BoltNewmark's ledger): the external
    work and the Rayleigh dissipation so far (trapezoidal rule over each step, the rule of the
    average-acceleration step), the kinetic and strain energy, the work of the contact tractions
@@ -468,6 +468,7 @@ typedef struct {
   PetscReal       frequency;
   PetscReal       rampTime; /* -load_ramp_time (0: tEnd) */
   PetscReal       releaseTime; /* -load_release_time: the release history drops the load after it */
+  PetscReal       sweepStart; /* -load_sweep_start: the stepped sine's first-cycle amplitude, a fraction of the load */
   PetscBool       monitor;
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       quasiStatic;    /* -ts_quasistatic: steps without inertia or damping */

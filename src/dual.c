@@ -505,7 +505,10 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     }
     if ((nchanged && (sets > d->maxOuter || (cycling && !d->closeCycles))) || solves >= d->maxInner) {
       d->failures++;
-      PetscCheck(d->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: the contact loop did not converge at step %" PetscInt_FMT ", t = %g s: after %" PetscInt_FMT " solves and %" PetscInt_FMT " active sets, %" PetscInt_FMT " pairs changed and a closed pair is off its contact by %.3e m (tolerance %.1e); raise -contact_max_outer / -contact_max_inner or add -contact_continue to go on with a warning", op->name, d->step, (double)d->time, solves, sets, nchanged, (double)viol, (double)d->tolPenetration);
+      char friction[160] = "";
+
+      if (s->law.friction) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", and the slipping pairs' tractions move by %.3e of the largest pressure (tolerance %.1e: -contact_tol_friction)", (double)s->frictionChange, (double)d->tolFriction));
+      PetscCheck(d->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: the contact loop did not converge at step %" PetscInt_FMT ", t = %g s: after %" PetscInt_FMT " solves and %" PetscInt_FMT " active sets, %" PetscInt_FMT " pairs changed and a closed pair is off its contact by %.3e m (tolerance %.1e)%s; raise -contact_max_outer / -contact_max_inner or add -contact_continue to go on with a warning", op->name, d->step, (double)d->time, solves, sets, nchanged, (double)viol, (double)d->tolPenetration, friction);
       PetscCall(PetscPrintf(comm, "WARNING %s: contact loop not converged at step %" PetscInt_FMT ", t = %g s; going on\n", op->name, d->step, (double)d->time));
       if (refactor) PetscCall(BoltDualFactor(d)); /* the next step starts consistent */
       break;

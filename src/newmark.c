@@ -16,6 +16,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
   nm->tEnd           = 0.1;
   nm->history        = BOLT_LOAD_STEP;
   nm->frequency      = 50.0;
+  nm->sweepStart     = 0.1;
   nm->calibratePreload = PETSC_TRUE;
   nm->preloadScale   = 1.0;
   PetscCall(PetscStrncpy(nm->checkpointBase, "output/joint", sizeof(nm->checkpointBase)));
@@ -27,7 +28,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
 PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
 {
   MPI_Comm    comm = nm->op->comm;
-  const char *hist[] = {"step", "sine", "ramp", "release", "BoltLoadHistory", "BOLT_LOAD_", NULL};
+  const char *hist[] = {"step", "sine", "ramp", "release", "sweep", "BoltLoadHistory", "BOLT_LOAD_", NULL};
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Time integration", "boltrom");
@@ -35,10 +36,11 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsReal("-ts_end", "End time [s]", NULL, nm->tEnd, &nm->tEnd, NULL));
   PetscCall(PetscOptionsReal("-newmark_beta", "Newmark beta", NULL, nm->beta, &nm->beta, NULL));
   PetscCall(PetscOptionsReal("-newmark_gamma", "Newmark gamma", NULL, nm->gamma, &nm->gamma, NULL));
-  PetscCall(PetscOptionsEnum("-load_history", "Time history of the external load: step (on from t > 0), sine, ramp (rising linearly to the full load at -load_ramp_time, then held) or release (the ramp, removed at -load_release_time: a ring-down from a static deflection)", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
+  PetscCall(PetscOptionsEnum("-load_history", "Time history of the external load: step (on from t > 0), sine, ramp (rising linearly to the full load at -load_ramp_time, then held), release (the ramp, removed at -load_release_time: a ring-down from a static deflection) or sweep (a stepped sine: whole cycles of -load_frequency whose amplitude grows geometrically from cycle to cycle, from -load_sweep_start times the load to the full load in the last cycle)", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
   PetscCall(PetscOptionsReal("-load_frequency", "Frequency of the sine load [Hz]", NULL, nm->frequency, &nm->frequency, NULL));
   PetscCall(PetscOptionsReal("-load_ramp_time", "Time at which the ramp load reaches its full value [s] (default: -ts_end)", NULL, nm->rampTime, &nm->rampTime, NULL));
   PetscCall(PetscOptionsReal("-load_release_time", "Time at which the release load drops to zero [s] (-load_history release)", NULL, nm->releaseTime, &nm->releaseTime, NULL));
+  PetscCall(PetscOptionsReal("-load_sweep_start", "The stepped sine's amplitude in its first cycle, as a fraction of -load_force (-load_history sweep)", NULL, nm->sweepStart, &nm->sweepStart, NULL));
   PetscCall(PetscOptionsBool("-ts_quasistatic", "Quasi-static steps: no inertia or damping; each step is the static equilibrium under the load at its time, with the contact and friction state carried from the step before (a load path)", NULL, nm->quasiStatic, &nm->quasiStatic, NULL));
   PetscCall(PetscOptionsBool("-static_contact_load", "The static contact solve carries the external load as well as the preload (added after the preload is calibrated alone)", NULL, nm->staticWithLoad, &nm->staticWithLoad, NULL));
   PetscCall(PetscOptionsBool("-preload_calibrate", "Scale the preload layer forces so that the bolt clamps with -preload_force (the layer between them is elastic)", NULL, nm->calibratePreload, &nm->calibratePreload, NULL));
@@ -56,6 +58,8 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCheck(nm->beta > 0 && nm->gamma >= 0.5, comm, PETSC_ERR_USER_INPUT, "Newmark needs beta > 0 and gamma >= 1/2 (got %g, %g)", (double)nm->beta, (double)nm->gamma);
   PetscCheck(nm->snapshotEvery >= 0, comm, PETSC_ERR_USER_INPUT, "-snapshot_every must be >= 0");
   PetscCheck(nm->history != BOLT_LOAD_RELEASE || (nm->rampTime > 0 && nm->releaseTime > nm->rampTime), comm, PETSC_ERR_USER_INPUT, "-load_history release needs 0 < -load_ramp_time < -load_release_time (got %g and %g)", (double)nm->rampTime, (double)nm->releaseTime);
+  PetscCheck(nm->sweepStart > 0 && nm->sweepStart <= 1, comm, PETSC_ERR_USER_INPUT, "-load_sweep_start must be in (0, 1] (got %g): the first cycle's amplitude as a fraction of -load_force", (double)nm->sweepStart);
+  PetscCheck(nm->history != BOLT_LOAD_SWEEP || nm->frequency > 0, comm, PETSC_ERR_USER_INPUT, "-load_history sweep needs -load_frequency > 0 (got %g)", (double)nm->frequency);
   PetscCheck(nm->rampTime >= 0, comm, PETSC_ERR_USER_INPUT, "-load_ramp_time must be >= 0 (got %g; 0: -ts_end)", (double)nm->rampTime);
   PetscFunctionReturn(0);
 }
@@ -125,6 +129,10 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
 static PetscReal BoltLoadAmplitude(BoltNewmark *nm, PetscReal t)
 {
   if (nm->history == BOLT_LOAD_SINE) return PetscSinReal(2 * PETSC_PI * nm->frequency * t);
+  if (nm->history == BOLT_LOAD_SWEEP) { /* cycle k of n at sweepStart^((n - 1 - k) / (n - 1)) */
+    PetscInt n = PetscMax(1, (PetscInt)PetscFloorReal(nm->tEnd * nm->frequency + 0.5)), k = PetscMin(n - 1, (PetscInt)PetscFloorReal(t * nm->frequency));
+    return (n > 1 ? PetscPowReal(nm->sweepStart, (PetscReal)(n - 1 - k) / (n - 1)) : 1.0) * PetscSinReal(2 * PETSC_PI * nm->frequency * t);
+  }
   if (nm->history == BOLT_LOAD_RELEASE) return t < nm->releaseTime ? PetscMax(0.0, PetscMin(1.0, t / nm->rampTime)) : 0.0;
   if (nm->history == BOLT_LOAD_RAMP) return PetscMax(0.0, PetscMin(1.0, t / (nm->rampTime > 0 ? nm->rampTime : nm->tEnd)));
   return t > 0 ? 1.0 : 0.0;

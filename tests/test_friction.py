@@ -266,6 +266,21 @@ def test_non_numeric_friction_is_refused(blocks, tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+def test_friction_non_convergence_names_the_friction_residual(blocks, tmp_path):
+    """Three solves a step cannot settle the slip that starts at T = mu N (step 200 of the ramp):
+    the error names the step, and the friction residual with its option, since the gaps are
+    closed and no pair changes state there."""
+    args = ["-mesh", blocks] + BLOCK + ["-load_force", str(2 * MU * N), "-load_history", "ramp", "-ts_dt", "5e-6",
+                                        "-ts_end", "2e-3", "-contact_max_inner", "3", "-output_dir", tmp_path / "out"]
+    proc = run_boltrom(args, check=False)
+    assert proc.returncode != 0
+    line = proc.stderr.strip().splitlines()
+    assert len(line) == 1 and "did not converge at step" in line[0] and "-contact_tol_friction" in line[0], line
+    step = int(line[0].split("at step ")[1].split(",")[0])
+    assert 180 <= step <= 200, step
+    assert not (tmp_path / "out").exists()
+
+
 def test_quasistatic_steps_carry_the_load_path(blocks, tmp_path):
     """-ts_quasistatic: each step the static equilibrium at its load. Below the cone (T up to
     mu N / 2) nothing slips and the path is linear in the load (every step proportional to the
@@ -284,6 +299,26 @@ def test_quasistatic_steps_carry_the_load_path(blocks, tmp_path):
     assert e["kinetic_change"] == 0 and e["rayleigh"] == 0
     assert e["external_work"] == pytest.approx(e["strain_change"] + e["stick_energy_change"], rel=1e-9)
     assert e["friction"] == pytest.approx(0, abs=1e-12 * e["external_work"])
+
+
+def test_stepped_sine_steps_its_amplitude_geometrically(blocks, tmp_path):
+    """-load_history sweep: four cycles whose amplitudes are 1/8, 1/4, 1/2 and 1 of the load. Below
+    the cone the quasi-static path is linear in the load, so the displacement over sin(2 pi f t)
+    is the cycle's amplitude times one constant (1e-9)."""
+    f, per_cycle, start = 50.0, 16, 0.125
+    run_summary(["-mesh", blocks] + BLOCK + ["-load_force", str(0.5 * MU * N), "-load_history", "sweep", "-load_sweep_start", str(start),
+                                             "-load_frequency", str(f), "-ts_quasistatic", "-ts_dt", str(1 / (f * per_cycle)),
+                                             "-ts_end", str(4 / f), "-contact_tol_penetration", "1e-16", "-output_dir", tmp_path], tmp_path)
+    h = history(tmp_path)
+    assert h["slipping"].max() == 0
+    t, u = h["time"], h["probe"] - h["probe"][0]
+    sine = np.sin(2 * np.pi * f * t)
+    use = np.abs(sine) > 0.5
+    cycle = np.floor(t * f + 1e-9).astype(int)
+    envelope = start ** ((3 - cycle) / 3.0)
+    ratio = u[use] / (sine[use] * envelope[use])
+    assert set(cycle[use]) == {0, 1, 2, 3}
+    assert np.max(np.abs(ratio - ratio[-1])) <= 1e-9 * abs(ratio[-1])
 
 
 def test_backbone_and_loop_work_on_known_signals():

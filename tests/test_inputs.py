@@ -112,6 +112,8 @@ def test_malformed_scene_file(beam, tmp_path):
     (["-ts_dt", "-1e-4"], ["-ts_dt", "> 0"]),
     (["-ts_dt", "1e-3", "-ts_end", "1e-4"], ["-ts_end", "-ts_dt"]),
     (["-load_history", "release", "-load_ramp_time", "2e-3"], ["-load_release_time", "release"]),
+    (["-load_history", "sweep", "-load_sweep_start", "0"], ["-load_sweep_start", "(0, 1]"]),
+    (["-load_history", "sweep", "-load_frequency", "0"], ["-load_frequency", "sweep"]),
 ])
 def test_bad_time_step(joint_small, tmp_path, args, words):
     mesh, _ = joint_small
