@@ -111,13 +111,15 @@ stress-strict: deps all
 # loops and ring-down backbones at level 0.5 (output/friction-L0.5/, docs/results.md); then the
 # harmonic loads along x and z with the ROM beside the FOM (output/friction-L0.5-rom/, -z-rom/);
 # then eight cycles along x, each cycle's dissipation, with the slip-shape ROM and with the
-# snapshot-mode ROM trained at 300 N (output/friction-L0.5-rom-c8/, -rom-trained300-c8/).
+# snapshot-mode ROM trained at 300 N and on a stepped sine from 10 to 300 N
+# (output/friction-L0.5-rom-c8/, -rom-trained300-c8/, -rom-trained10to300-c8/).
 friction: deps all
 	$(PYTHON) scripts/friction-scenes --results
 	$(PYTHON) scripts/friction-scenes --rom --ringdown --results
 	$(PYTHON) scripts/friction-scenes --rom --ringdown --direction z --results
 	$(PYTHON) scripts/friction-scenes --rom --cycles 8 --amplitudes 10 30 100 300 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --cycles 8 --amplitudes 10 30 100 300 --ringdown --results
+	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --rom-train-from 10 --cycles 8 --amplitudes 10 20 30 50 100 200 300 --ringdown --results
 
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all
