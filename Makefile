@@ -112,7 +112,9 @@ stress-strict: deps all
 # harmonic loads along x and z with the ROM beside the FOM (output/friction-L0.5-rom/, -z-rom/);
 # then eight cycles along x, each cycle's dissipation, with the slip-shape ROM and with the
 # snapshot-mode ROM trained at 300 N and on a stepped sine from 10 to 300 N
-# (output/friction-L0.5-rom-c8/, -rom-trained300-c8/, -rom-trained10to300-c8/).
+# (output/friction-L0.5-rom-c8/, -rom-trained300-c8/, -rom-trained10to300-c8/); and three cycles
+# up to 700 N, below the joint's sliding as a whole, with one trained on a stepped sine from 10 to
+# 700 N (-rom-trained10to700/).
 friction: deps all
 	$(PYTHON) scripts/friction-scenes --results
 	$(PYTHON) scripts/friction-scenes --rom --ringdown --results
@@ -120,6 +122,7 @@ friction: deps all
 	$(PYTHON) scripts/friction-scenes --rom --cycles 8 --amplitudes 10 30 100 300 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --cycles 8 --amplitudes 10 30 100 300 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --rom-train-from 10 --cycles 8 --amplitudes 10 20 30 50 100 200 300 --ringdown --results
+	$(PYTHON) scripts/friction-scenes --rom --rom-train 700 --rom-train-from 10 --cycles 3 --amplitudes 50 200 500 700 --ringdown --results
 
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all
