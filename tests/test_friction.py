@@ -305,9 +305,9 @@ def test_stepped_sine_steps_its_amplitude_geometrically(blocks, tmp_path):
     """-load_history sweep: four cycles whose amplitudes are 1/8, 1/4, 1/2 and 1 of the load. Below
     the cone the quasi-static path is linear in the load, so the displacement over sin(2 pi f t)
     is the cycle's amplitude times one constant (1e-9)."""
-    f, per_cycle, start = 50.0, 16, 0.125
+    f, steps_per_cycle, start = 50.0, 16, 0.125
     run_summary(["-mesh", blocks] + BLOCK + ["-load_force", str(0.5 * MU * N), "-load_history", "sweep", "-load_sweep_start", str(start),
-                                             "-load_frequency", str(f), "-ts_quasistatic", "-ts_dt", str(1 / (f * per_cycle)),
+                                             "-load_frequency", str(f), "-ts_quasistatic", "-ts_dt", str(1 / (f * steps_per_cycle)),
                                              "-ts_end", str(4 / f), "-contact_tol_penetration", "1e-16", "-output_dir", tmp_path], tmp_path)
     h = history(tmp_path)
     assert h["slipping"].max() == 0
