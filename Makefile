@@ -123,6 +123,8 @@ friction: deps all
 	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --cycles 8 --amplitudes 10 30 100 300 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --rom-train-from 10 --cycles 8 --amplitudes 10 20 30 50 100 200 300 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --rom --rom-train 700 --rom-train-from 10 --cycles 3 --amplitudes 50 200 500 700 --ringdown --results
+	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 8 --amplitudes 10 20 30 50 100 200 300 --ringdown --results
+	$(PYTHON) scripts/friction-scenes --rom --rom-train 700 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 3 --amplitudes 50 200 500 700 --ringdown --results
 
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all
