@@ -20,6 +20,7 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscCall(BoltLoadSetSetFromOptions(r->loads));
   PetscCall(BoltReductionCreate(r->comm, &r->red));
   PetscCall(BoltReductionSetFromOptions(r->red));
+  PetscCheck(!(r->opt.rom && r->red->opt.coneShapes > 0) || r->contact->law.friction, r->comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes needs a frictional law: add -contact_law coulomb (the %s law has no cone)", r->contact->lawType);
   PetscCall(BoltPreflightSetFromOptions(r->comm, &r->opt, checkpointBase));
   PetscFunctionReturn(0);
 }

@@ -424,8 +424,9 @@ static PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c
      their creep is all the joint dissipates, in bursts that die out cycle by cycle. The interface
      modes are the stuck interface's, and snapshot modes mix every pair's slip; these pairs get
      shapes of their own, the responses to a unit force pair along their normal (the pressure they
-     shed and take decides when they slip: without these the ROM was 37 - 53 % over in the last
-     bursts, with them within 2.4 %) and along their tangential traction (within 1.5 %) */
+     shed and take moves their cone: on the joint at level 0.5, a ROM that was 16 - 52 % over in
+     the last bursts at 10 - 30 N came within 2.5 % with these) and along their tangential traction
+     (with both, within 1.5 %; with the traction alone no nearer) */
   if (rom->coneShapes > 0 && s->law.friction) {
     PetscInt   ncone = 0, nconeGlobal;
     PetscBool *cone;

@@ -126,6 +126,7 @@ def test_bad_time_step(joint_small, tmp_path, args, words):
     (["-rom_contact_band_scale", "-1"], ["-rom_contact_band_scale", "> 0"]),
     (["-rom_opening_shapes", "-1"], ["-rom_opening_shapes", ">= 0"]),
     (["-rom_cone_shapes", "1.5"], ["-rom_cone_shapes", "within [0, 1]"]),
+    (["-rom_cone_shapes", "0.999"], ["-rom_cone_shapes", "-contact_law coulomb"]),
     (["-rom_update_rank", "-2"], ["-rom_update_rank", ">= 0"]),
     (["-rom_closed_krylov", "17"], ["-rom_closed_krylov", "between 0 and 16"]),
 ])
