@@ -96,6 +96,7 @@ static PetscErrorCode BoltNodePairVectorAlong(PetscInt a, PetscInt b, const Pets
   PetscCall(VecGetArray(v, &x));
   for (PetscInt k = 0; k < rend - rstart; k++) x[k] = 0;
   for (PetscInt d = 0; d < 3; d++) {
+    if (dir[d] == 0) continue; /* the zeros stay +0 */
     if (a >= 0 && a + d >= rstart && a + d < rend) x[a + d - rstart] = dir[d];
     if (b >= 0 && b + d >= rstart && b + d < rend) x[b + d - rstart] = -dir[d];
   }
@@ -106,16 +107,11 @@ static PetscErrorCode BoltNodePairVectorAlong(PetscInt a, PetscInt b, const Pets
 /* v = e_a - e_b in direction d of node pair (a, b) (x-component DOFs, -1 if clamped) */
 static PetscErrorCode BoltNodePairVector(PetscInt a, PetscInt b, PetscInt d, Vec v)
 {
-  PetscInt     rstart, rend, ia = a >= 0 ? a + d : -1, ib = b >= 0 ? b + d : -1;
-  PetscScalar *x;
+  PetscReal e[3] = {0, 0, 0};
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetOwnershipRange(v, &rstart, &rend));
-  PetscCall(VecGetArray(v, &x));
-  for (PetscInt k = 0; k < rend - rstart; k++) x[k] = 0;
-  if (ia >= rstart && ia < rend) x[ia - rstart] = 1.0;
-  if (ib >= rstart && ib < rend) x[ib - rstart] = -1.0;
-  PetscCall(VecRestoreArray(v, &x));
+  e[d] = 1;
+  PetscCall(BoltNodePairVectorAlong(a, b, e, v));
   PetscFunctionReturn(0);
 }
 
