@@ -584,10 +584,12 @@ typedef struct {
   PetscReal       slipScale;     /* friction: also of the pairs beyond the cone, sticking, under this multiple */
   PetscReal       coneShapes;    /* friction: also of the pairs whose preloaded traction is this fraction of the cone or more (0: none) */
   PetscBool       coneTraction;  /* with them: a shape along the pair's tangential traction too (else along its normal only) */
+  PetscInt        coneModes;     /* with them and training snapshots: this many shapes per direction, of the snapshots' patterns at the pairs (0: one per pair) */
   PetscInt        nOpenKrylov;   /* opened-joint Krylov vectors with them */
   PetscInt        nOpeningPairs; /* node pairs with opening shapes in the basis */
   PetscInt        nSnapshotModes; /* POD modes of the FOM's snapshots in the basis */
   PetscInt        nConePairs;    /* friction: node pairs with cone shapes in the basis */
+  PetscInt        nConeModes;    /* friction: the cone shapes in the basis when compressed (-rom_cone_modes), else 0 */
   PetscBool      *marked;        /* 4 per local contact element: the point's state changed in those static solves (NULL: not made) */
   PetscBool       holdUnmarked;  /* -rom_hold_unmarked: online, the other points keep their preloaded state */
   PetscBool       gapsEverywhere; /* -rom_gaps_everywhere: every point's gaps at every solve (a check) */
@@ -635,6 +637,7 @@ typedef struct {
   PetscReal  slipScale;                     /* -rom_slip_shapes: friction, the load's scale whose pairs beyond the cone get shapes */
   PetscReal  coneShapes;                    /* -rom_cone_shapes: friction, the pairs at this fraction of the cone in the preloaded state get shapes, 0 none */
   PetscBool  coneTraction;                  /* -rom_cone_traction */
+  PetscInt   coneModes;                     /* -rom_cone_modes: the cone shapes compressed to this many per direction, 0 a shape per pair */
   PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
   PetscBool  holdUnmarked;                  /* -rom_hold_unmarked */
   PetscBool  holdUnmarkedSet;               /* given (else true, but false under friction) */

@@ -21,6 +21,7 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscCall(BoltReductionCreate(r->comm, &r->red));
   PetscCall(BoltReductionSetFromOptions(r->red));
   PetscCheck(!(r->opt.rom && r->red->opt.coneShapes > 0) || r->contact->law.friction, r->comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes needs a frictional law: add -contact_law coulomb (the %s law has no cone)", r->contact->lawType);
+  PetscCheck(!(r->opt.rom && r->red->opt.coneModes > 0) || (r->red->opt.coneShapes > 0 && r->red->opt.nSnapshotModes > 0), r->comm, PETSC_ERR_USER_INPUT, "-rom_cone_modes compresses cone shapes with a training run's snapshots: add -rom_cone_shapes r and -rom_snapshot_modes k");
   PetscCall(BoltPreflightSetFromOptions(r->comm, &r->opt, checkpointBase));
   PetscFunctionReturn(0);
 }

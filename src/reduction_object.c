@@ -62,6 +62,8 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCall(PetscOptionsReal("-rom_cone_shapes", "Under friction, interface-reduced ROM with -rom_preload_state: the node pairs whose preloaded tangential traction is at least this fraction of the cone mu |t_N| get shapes of their own (the static response to a unit force pair along the normal and along the traction), with or without snapshot modes; they follow the creep of those pairs under small loads; 0: none", NULL, o->coneShapes, &o->coneShapes, NULL));
   o->coneTraction = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-rom_cone_traction", "With -rom_cone_shapes: a shape along each pair's tangential traction as well as along its normal (false: the normal only, one shape per pair)", NULL, o->coneTraction, &o->coneTraction, NULL));
+  o->coneModes = 0;
+  PetscCall(PetscOptionsInt("-rom_cone_modes", "With -rom_cone_shapes and -rom_snapshot_modes: instead of shapes per pair, this many per direction (normal, traction), the static responses to the leading patterns (POD) of the training run's relative displacements at those pairs; a basis that grows with the modes, not with the pairs on the cone; 0: a shape per pair and direction", NULL, o->coneModes, &o->coneModes, NULL));
   o->nOpenKrylov = 3;
   PetscCall(PetscOptionsInt("-rom_opening_krylov", "With opening shapes: Krylov vectors of the joint as that load opens it (its active set kept), like -rom_closed_krylov for the preloaded joint", NULL, o->nOpenKrylov, &o->nOpenKrylov, NULL));
   o->holdUnmarked = PETSC_TRUE;
@@ -82,6 +84,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCheck(o->staticPenaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_static_penalty_scale must be > 0 (got %g)", (double)o->staticPenaltyScale);
   PetscCheck(o->openingScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_opening_shapes must be >= 0 (got %g)", (double)o->openingScale);
   PetscCheck(o->coneShapes >= 0 && o->coneShapes <= 1, comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes must be within [0, 1], a fraction of the friction cone (got %g)", (double)o->coneShapes);
+  PetscCheck(o->coneModes >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_cone_modes must be >= 0 (got %" PetscInt_FMT ")", o->coneModes);
   PetscCheck(o->slipScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_slip_shapes must be >= 0 (got %g)", (double)o->slipScale);
   PetscCheck(o->nOpenKrylov >= 0 && o->nOpenKrylov <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_opening_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nOpenKrylov);
   PetscCheck(o->updateRank >= -1, comm, PETSC_ERR_USER_INPUT, "-rom_update_rank must be >= 0 (got %" PetscInt_FMT ")", o->updateRank);
@@ -118,7 +121,7 @@ PetscErrorCode BoltReductionView(BoltReduction *red, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "Reduction: Krylov order %" PetscInt_FMT ", s0 %g rad/s, block size %" PetscInt_FMT ", deflation tol %g; interface reduction CCM %" PetscInt_FMT " + JIM %" PetscInt_FMT "%s\n", k->order, (double)k->s0, k->blockSize, (double)k->deflationTol, o->nCCM, o->nJIM, o->nCCM + o->nJIM ? "" : " (none)"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  file %s (%s), contact law %s, preload state %s, closed-contact Krylov %" PetscInt_FMT " (%s), static shapes %s\n", o->file[0] ? o->file : "(none)", o->rebuild ? "rebuilt if it does not match" : "refused if it does not match", o->augmentSet ? (o->augment ? "augmented" : "penalty") : "default", PetscBools[o->preloadState], o->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free", PetscBools[o->staticShapes]));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  penalty scale %g, band scale %g (0: default), static penalty scale %g\n", (double)o->penaltyScale, (double)o->bandScale, (double)o->staticPenaltyScale));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  opening shapes at %g x the load%s (slip shapes at %g x), %" PetscInt_FMT " opened-joint Krylov; snapshot modes %" PetscInt_FMT " above %g; cone shapes at %g of the cone%s\n", (double)o->openingScale, o->openingScaleSet ? "" : " (the law's default)", (double)o->slipScale, o->nOpenKrylov, o->nSnapshotModes, (double)o->snapshotTol, (double)o->coneShapes, o->coneTraction ? " (normal and traction)" : " (normal)"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  opening shapes at %g x the load%s (slip shapes at %g x), %" PetscInt_FMT " opened-joint Krylov; snapshot modes %" PetscInt_FMT " above %g; cone shapes at %g of the cone%s, %" PetscInt_FMT " cone modes per direction (0: a shape per pair)\n", (double)o->openingScale, o->openingScaleSet ? "" : " (the law's default)", (double)o->slipScale, o->nOpenKrylov, o->nSnapshotModes, (double)o->snapshotTol, (double)o->coneShapes, o->coneTraction ? " (normal and traction)" : " (normal)", o->coneModes));
   PetscFunctionReturn(0);
 }
 

@@ -318,6 +318,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "opening_pairs", PETSC_INT, &rom->nOpeningPairs));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "snapshot_modes", PETSC_INT, &rom->nSnapshotModes));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "cone_pairs", PETSC_INT, &rom->nConePairs));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "cone_modes", PETSC_INT, &rom->nConeModes));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "s0", PETSC_REAL, &rom->s0));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "offline_s", PETSC_REAL, &rom->tOffline));
   PetscCall(PetscViewerDestroy(&v));
@@ -371,6 +372,7 @@ PetscErrorCode BoltROMLoad(const char file[], const char fingerprint[], BoltRedu
     PetscInt none = 0; /* files written before the modes existed have none */
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "snapshot_modes", PETSC_INT, &none, &rom->nSnapshotModes));
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "cone_pairs", PETSC_INT, &none, &rom->nConePairs));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "cone_modes", PETSC_INT, &none, &rom->nConeModes));
   }
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "s0", PETSC_REAL, NULL, &rom->s0));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, NULL, &groups));

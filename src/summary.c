@@ -217,6 +217,7 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));
   PetscCall(BoltJSONInt(j, "snapshot_modes", rom->nSnapshotModes));
   PetscCall(BoltJSONInt(j, "cone_pairs", rom->nConePairs));
+  PetscCall(BoltJSONInt(j, "cone_modes", rom->nConeModes));
   PetscCall(BoltJSONInt(j, "update_rank", rom->updateRankUsed));
   PetscCall(BoltJSONInt(j, "held_points", s->romRun->op->state->mayChange != NULL));
   PetscCall(SummaryNewmarkRun(j, s->romRun, PETSC_FALSE));

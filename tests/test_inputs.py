@@ -89,7 +89,7 @@ def test_help_lists_options():
                 "-rayleigh_alpha", "-rayleigh_beta", "-contact_penalty_factor", "-load_group", "-load_force",
                 "-preload_force", "-probe_group", "-output_dir", "-summary", "-modal_nev", "-static_ksp_type",
                 "-modal_eps_nev", "-ts_dt", "-contact_inner", "-contact_cycle_close", "-krylov_order", "-krylov_s0", "-rom_n_ccm", "-rom_file",
-                "-rom_contact_augment", "-rom_preload_state", "-rom_contact_penalty_scale", "-rom_contact_band_scale", "-rom_closed_krylov", "-rom_closed_keep_active", "-rom_static_shapes", "-rom_opening_shapes", "-rom_opening_krylov", "-rom_cone_shapes", "-rom_cone_traction", "-rom_update_rank", "-rom_hold_unmarked",
+                "-rom_contact_augment", "-rom_preload_state", "-rom_contact_penalty_scale", "-rom_contact_band_scale", "-rom_closed_krylov", "-rom_closed_keep_active", "-rom_static_shapes", "-rom_opening_shapes", "-rom_opening_krylov", "-rom_cone_shapes", "-rom_cone_traction", "-rom_cone_modes", "-rom_update_rank", "-rom_hold_unmarked",
                 "-export_matrices"):
         assert opt in proc.stdout, opt
 
@@ -127,6 +127,8 @@ def test_bad_time_step(joint_small, tmp_path, args, words):
     (["-rom_opening_shapes", "-1"], ["-rom_opening_shapes", ">= 0"]),
     (["-rom_cone_shapes", "1.5"], ["-rom_cone_shapes", "within [0, 1]"]),
     (["-rom_cone_shapes", "0.999"], ["-rom_cone_shapes", "-contact_law coulomb"]),
+    (["-rom_cone_modes", "-1"], ["-rom_cone_modes", ">= 0"]),
+    (["-contact_law", "coulomb", "-rom_cone_modes", "50"], ["-rom_cone_modes", "-rom_cone_shapes", "-rom_snapshot_modes"]),
     (["-rom_update_rank", "-2"], ["-rom_update_rank", ">= 0"]),
     (["-rom_closed_krylov", "17"], ["-rom_closed_krylov", "between 0 and 16"]),
 ])
