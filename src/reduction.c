@@ -130,10 +130,17 @@ static PetscErrorCode BoltNodePairVector(PetscInt a, PetscInt b, PetscInt d, Vec
   PetscFunctionReturn(0);
 }
 
+/* dir . (x - x0) at the node whose x component is local entry i */
+static PetscReal BoltNodeChangeAlong(const PetscReal dir[3], const PetscScalar x[], const PetscScalar x0[], PetscInt i)
+{
+  return dir[0] * (x[i] - x0[i]) + dir[1] * (x[i + 1] - x0[i + 1]) + dir[2] * (x[i + 2] - x0[i + 2]);
+}
+
 /* The leading patterns of a training run at some node pairs: R(i, j) = dir_i . (u_a - u_b) in
    snapshot j + 1 less the preloaded snapshot 0, each column scaled to unit norm, and R's leading
-   left singular vectors (LAPACK), at most kmax, none below 1e-8 of the largest. Each side of a pair is summed over the ranks
-   apart (one rank owns it: the sums are exact), so every rank holds the same R and patterns. */
+   left singular vectors (LAPACK), at most kmax, none below 1e-8 of the largest. Each side of a
+   pair is summed over the ranks apart (one rank owns it: the sums are exact), so every rank holds
+   the same R and patterns. */
 static PetscErrorCode BoltNodePairPatterns(MPI_Comm comm, PetscInt npair, const PetscInt pairs[], const PetscReal dirs[], PetscInt stride, PetscInt nsnap, Vec snap[], PetscInt kmax, PetscInt *kout, PetscReal **patterns)
 {
   const PetscInt ns = nsnap - 1;
@@ -155,8 +162,8 @@ static PetscErrorCode BoltNodePairPatterns(MPI_Comm comm, PetscInt npair, const 
     for (PetscInt i = 0; i < npair; i++) {
       const PetscInt   a = pairs[2 * i], b = pairs[2 * i + 1];
       const PetscReal *dir = &dirs[stride * i];
-      if (a >= rstart && a < rend) Ra[i + npair * j] = dir[0] * (x[a - rstart] - x0[a - rstart]) + dir[1] * (x[a + 1 - rstart] - x0[a + 1 - rstart]) + dir[2] * (x[a + 2 - rstart] - x0[a + 2 - rstart]);
-      if (b >= rstart && b < rend) Rb[i + npair * j] = dir[0] * (x[b - rstart] - x0[b - rstart]) + dir[1] * (x[b + 1 - rstart] - x0[b + 1 - rstart]) + dir[2] * (x[b + 2 - rstart] - x0[b + 2 - rstart]);
+      if (a >= rstart && a < rend) Ra[i + npair * j] = BoltNodeChangeAlong(dir, x, x0, a - rstart);
+      if (b >= rstart && b < rend) Rb[i + npair * j] = BoltNodeChangeAlong(dir, x, x0, b - rstart);
     }
     PetscCall(VecRestoreArrayRead(snap[j + 1], &x));
   }
@@ -839,6 +846,8 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
       PetscCall(PetscPrintf(o->comm, "ROM file %s does not match this scene (%s): rebuilding it\n", o->file, why));
     }
   }
+  /* built here: the snapshot modes, and the cone modes in the static solves, read this run's snapshots */
+  PetscCheck(o->nSnapshotModes == 0 || o->nFomSnapshots > 1, o->comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's snapshots of the same run: add -fom true -snapshot_every k");
   PetscCall(BoltAssemblerDamping(asmb, &C));
   rom->nCCM = o->nCCM;
   rom->nJIM = o->nJIM;
@@ -876,7 +885,6 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   if (staticShapes) {
     Vec     *extra;
     PetscInt added, nextra;
-    PetscCheck(rom->coneModes == 0 || o->nFomSnapshots > 1, o->comm, PETSC_ERR_USER_INPUT, "-rom_cone_modes needs the FOM's snapshots of the same run: add -fom true -snapshot_every 1");
     PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
     PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->closedKeepActive, rom->openingScale, rom->nOpenKrylov, o->fomPreload, o->nFomSnapshots, o->fomSnapshots, &nextra, &extra, &preloadCalibrated));
     PetscCall(BoltMemoryPrint(o->comm, "the preloaded state's static solves"));
@@ -894,7 +902,6 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   if (o->nSnapshotModes > 0) {
     Vec     *modes;
     PetscInt nmodes, added;
-    PetscCheck(o->nFomSnapshots > 1, o->comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's snapshots of the same run: add -fom true -snapshot_every k");
     PetscCall(BoltSnapshotModes(V, o->nFomSnapshots, o->fomSnapshots, o->nSnapshotModes, o->snapshotTol, &nmodes, &modes));
     PetscCall(BoltBasisAppend(V, "snapshot modes", nmodes, modes, kry->deflationTol, &added));
     rom->nSnapshotModes = added;
