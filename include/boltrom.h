@@ -550,8 +550,10 @@ typedef struct {
   PetscBool       FrValid, KcrValid, tnValid;
   /* the gaps from node-pair differences D = V_b - V_a: on flat surfaces the normal gaps n' D q
      (a sixth of the rows of V_c), all that the penalty law's decisions need (the tangential gaps
-     act only through the penalty, which is inside K_cr) */
-  PetscBool       flat;              /* the normals of all points at each node agree (global): one normal row per node pair, else three rows of D */
+     act only through the penalty, which is inside K_cr); under friction the whole gaps, three
+     rows per node pair (half the rows of V_c, and no cancellation in u_b - u_a) */
+  PetscBool       flat;              /* the normals of all points at each node agree (global) */
+  PetscBool       wholeRows;         /* three rows of D per node pair (curved surfaces, or friction), else one normal row */
   PetscInt        nGapRows, nLiveRows; /* all rows; the first nLiveRows are those of points that may change */
   PetscBool       heldRowsDone;      /* the held points' rows were taken once */
   PetscScalar    *Rn;                /* nGapRows x n, column-major */
