@@ -495,8 +495,9 @@ static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
    penalty law: there the multipliers do not take the trial traction, so the gaps only feed the
    decisions and the penalty acts through K_cr. On flat surfaces only the normal part,
    g = (sum_a N_a n' D_a q) n: the decisions read t.n, where the tangential part cancels to
-   round-off; friction's decisions read the slip too, so there the whole gap. With augmentation (the multipliers take the trial traction): u_c and the set's
-   interpolation, as the full model. */
+   round-off; friction's decisions read the slip too, so there the whole gap. With augmentation
+   (the multipliers take the trial traction): u_c and the set's interpolation, as the full
+   model. */
 static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
 {
   BoltROM           *rom = (BoltROM *)op->ctx;
