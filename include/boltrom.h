@@ -599,10 +599,28 @@ typedef struct {
   PetscInt        updateRank;    /* -rom_update_rank as given (-1: the default) */
   PetscInt        updateRankUsed; /* as resolved when the operator was made (0: refactorise) */
   struct BoltROMUpdate_s *update; /* low-rank updates of the online factorisation (rom_update.c), or NULL */
-  /* with them, F_r of the state's multipliers is updated for the elements whose forces changed */
+  /* F_r = sum_p D_p' F_p over node pairs p (D_p: the pair's three rows of D = V_b - V_a, F_p the
+     side-b force of its points). Each node pair has one owner rank, in turn over the pairs in the
+     order of their first point's name; its points' nodal forces reach the owner, which sums them
+     in the order of their names: a node pair's term has the same bits on any partition, costs a
+     quarter of the four element terms it replaces, and the ranks share the pairs evenly. */
+  PetscInt        npOwned, npGlobal; /* node pairs this rank owns, and all of them */
+  PetscInt       *npSlotStart;   /* npOwned + 1: the owned pairs' points in npSlotF */
+  PetscReal      *npD;           /* 3n per owned pair: D_p' as n rows of 3 */
+  PetscReal      *npDMax;        /* per owned pair: max |D_p| */
+  PetscReal      *npSlotF;       /* 3 per point of an owned pair: its nodal force, from its element's rank */
+  PetscReal      *npF, *npFSum;  /* 3 per owned pair: F_p, and the F_p whose term fAcc holds */
+  PetscSF         npSF;          /* leaves: felem of the local elements (and, alike, their points' gaps); roots: npSlotF */
+  /* under friction with the nodal quadrature (pairGaps) the owners make the gaps too, D_p q, and
+     send them to the pairs' points: the rows of pairs with a point that may change first */
+  PetscBool       pairGaps;
+  PetscInt        npLive;        /* owned pairs with a point that may change */
+  PetscInt       *npRowOf;       /* per owned pair: its first row in npRows */
+  PetscScalar    *npRows;        /* 3 npOwned x n, column-major: the owned pairs' rows of D */
+  PetscScalar    *npGap;         /* 3 npOwned: scratch */
+  /* with low-rank updates, F_r of the state's multipliers is updated for the pairs whose forces changed */
   PetscReal      *fAcc;          /* 2n: this rank's exact partial sums */
-  PetscReal      *fOwn, *fNew;   /* 12 per local contact element: the forces in fAcc, and scratch */
-  PetscReal      *fParts;        /* 2n per local contact element: its term's parts in fAcc */
+  PetscReal      *fParts;        /* 2n per owned pair: its term's parts in fAcc */
   PetscReal       fGridBound;    /* the bound the sums' grid was set for (kept by checkpoints) */
   PetscBool       fGridValid, fPartsValid;
 } BoltROM;

@@ -984,7 +984,10 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(rom->marked));
   PetscCall(BoltROMUpdateDestroy(&rom->update));
-  PetscCall(PetscFree4(rom->fAcc, rom->fOwn, rom->fNew, rom->fParts));
+  PetscCall(PetscFree2(rom->fAcc, rom->fParts));
+  PetscCall(PetscFree6(rom->npSlotStart, rom->npD, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
+  PetscCall(PetscSFDestroy(&rom->npSF));
+  PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));
   PetscCall(PetscFree(*romp));
   PetscFunctionReturn(0);
 }

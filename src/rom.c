@@ -1,10 +1,10 @@
 /* The reduced-order operator: small dense matrices on every rank, solved redundantly with
    LAPACK (cheaper than broadcasting the solution), and the contact DOFs reached through the
-   rows of the basis: u_c = V_c q_r, F_r = sum_e D_e' f_e and K_cr = sum_e V_e' K_e V_e (as
-   D_e' M_e D_e, updated only for elements whose active points changed), with D_e = V_b - V_a at
-   the element's node pairs. Both sums have the same bits on any partition (exact sums over
-   ranks; K_cr under the nodal quadrature by one product every rank makes on the same gathered
-   node pairs), and so has the ROM's history. Under the penalty law a time step needs neither
+   rows of the basis: u_c = V_c q_r, F_r = sum_p D_p' F_p over the node pairs (each summed by
+   one owner rank) and K_cr = sum_e V_e' K_e V_e (as D_e' M_e D_e, updated only for elements
+   whose active points changed), with D = V_b - V_a at the node pairs. Both sums have the same
+   bits on any partition (exact sums over ranks; K_cr under the nodal quadrature by one product
+   every rank makes on the same gathered node pairs), and so has the ROM's history. Under the penalty law a time step needs neither
    u_c nor the sums while the contact state holds: the gaps come from node-pair rows (normal ones
    on flat surfaces), and the forces, K_cr and the opening test's coefficients are kept with the
    state's version. */
@@ -54,154 +54,9 @@ static PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
   PetscFunctionReturn(0);
 }
 
-/* g = D_e' f (n values), the element's term of F_r, each value summed over k = 0..11 in that
-   order. Eight values at a time: eight independent chains of additions instead of one, whose
-   latency bounded the loop; each value's sum, and so its bits, is unchanged. */
-static void ROMElementForceTerm(const BoltROM *rom, PetscInt e, const PetscReal f_[12], PetscReal g[])
-{
-  const PetscReal *restrict D = &rom->De[12 * rom->n * e], *restrict f = f_;
-  const PetscInt  n = rom->n;
-  PetscInt        j = 0;
-
-  for (; j + 8 <= n; j += 8) {
-    const PetscReal *restrict d = D + 12 * j;
-    PetscReal                 v0 = 0, v1 = 0, v2 = 0, v3 = 0, v4 = 0, v5 = 0, v6 = 0, v7 = 0;
-    for (PetscInt k = 0; k < 12; k++) {
-      const PetscReal fk = f[k];
-      v0 += d[k] * fk;
-      v1 += d[k + 12] * fk;
-      v2 += d[k + 24] * fk;
-      v3 += d[k + 36] * fk;
-      v4 += d[k + 48] * fk;
-      v5 += d[k + 60] * fk;
-      v6 += d[k + 72] * fk;
-      v7 += d[k + 84] * fk;
-    }
-    g[j]     = v0;
-    g[j + 1] = v1;
-    g[j + 2] = v2;
-    g[j + 3] = v3;
-    g[j + 4] = v4;
-    g[j + 5] = v5;
-    g[j + 6] = v6;
-    g[j + 7] = v7;
-  }
-  for (; j < n; j++) {
-    PetscReal v = 0;
-    for (PetscInt k = 0; k < 12; k++) v += D[k + 12 * j] * f[k];
-    g[j] = v;
-  }
-}
-
-/* F_r of the state's own multipliers, where the ROM takes low-rank updates (the strict law):
-   after a change of the active set only the elements whose forces changed are summed again.
-   Each rank keeps its partial exact sum on a grid that stays while the terms fit it, and each
-   element's term as it was split onto the grid; a changed element's old parts are taken out
-   (exactly) and its new term added. The partial sums then hold exactly the parts of the current
-   terms, so F_r has the bits of a sum made afresh on that grid, on any number of ranks. */
-static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal lambda[], Vec F)
-{
-  BoltROM        *rom = (BoltROM *)op->ctx;
-  BoltContactSet *c   = rom->contact;
-  const PetscInt  n   = rom->n;
-  PetscReal       bound = 0, *g = rom->work, *fnew = rom->fNew;
-  PetscBool       fresh;
-  PetscScalar    *y;
-
-  PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    PetscReal *f = &fnew[12 * e], sum = 0;
-    BoltContactElementForces(c, e, lambda, f);
-    for (PetscInt k = 0; k < 12; k++) sum += PetscAbsReal(f[k]);
-    bound = PetscMax(bound, rom->DeMax[e] * sum);
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
-  /* a new grid where a term outgrows it or the terms shrank so far that it is too coarse */
-  if (!rom->fGridValid || bound > rom->fGridBound || bound < ldexp(rom->fGridBound, -20)) {
-    rom->fGridBound  = bound;
-    rom->fGridValid  = PETSC_TRUE;
-    rom->fPartsValid = PETSC_FALSE;
-  }
-  fresh = (PetscBool)!rom->fPartsValid;
-  PetscCall(BoltExactSumBegin(&rom->sum, n, rom->fGridBound, c->ngpGlobal / 4));
-  if (!fresh) PetscCall(PetscArraycpy(rom->sum.acc, rom->fAcc, 2 * n));
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscReal *f = &fnew[12 * e], *fold = &rom->fOwn[12 * e];
-    PetscReal       *p = &rom->fParts[2 * n * e];
-    PetscBool        changed = fresh;
-    if (rom->DeMax[e] == 0) continue;
-    for (PetscInt k = 0; k < 12 && !changed; k++) changed = (PetscBool)(f[k] != fold[k]);
-    if (!changed) continue;
-    if (!fresh) BoltExactSumRemove(&rom->sum, p, p + n);
-    ROMElementForceTerm(rom, e, f, g);
-    BoltExactSumAddParts(&rom->sum, g, p, p + n);
-  }
-  PetscCall(PetscArraycpy(rom->fAcc, rom->sum.acc, 2 * n));
-  rom->fNew        = rom->fOwn; /* the forces now in fAcc; the old ones are scratch */
-  rom->fOwn        = fnew;
-  rom->fPartsValid = PETSC_TRUE;
-  PetscCall(VecGetArray(F, &y));
-  PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
-  PetscCall(PetscArraycpy(rom->Fr, y, n));
-  PetscCall(VecRestoreArray(F, &y));
-  rom->FrVersion = op->state->version;
-  rom->FrValid   = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
-/* F_r = sum_e D_e' f_e over the contact elements of all ranks, f_e the side-b nodal forces of
-   the element's Gauss-point tractions (side a takes -f_e). Per element the work does not depend
-   on the partition, and the sum over elements is exact on fixed grids (BoltExactSum), so F_r
-   has the same bits on any number of ranks. The forces of the state's own multipliers are kept
-   while the state's version holds: under the penalty law they are the same every step. */
-static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F)
-{
-  BoltROM        *rom = (BoltROM *)op->ctx;
-  BoltContactSet *c   = rom->contact;
-  const PetscInt  n   = rom->n;
-  /* the state's multipliers, with or without its anchors (a rank without anchors hands lambda
-     itself): a decision every rank takes alike, as the cache skips reductions */
-  const PetscBool own = (PetscBool)(lambda == op->state->lambda || lambda == op->state->lambdaForce);
-  PetscReal       bound = 0, *g = rom->work;
-  PetscScalar    *y;
-
-  PetscFunctionBeginUser;
-  if (own && rom->FrValid && rom->FrVersion == op->state->version) {
-    PetscCall(VecGetArray(F, &y));
-    PetscCall(PetscArraycpy(y, rom->Fr, n));
-    PetscCall(VecRestoreArray(F, &y));
-    PetscFunctionReturn(0);
-  }
-  if (own && rom->update) {
-    PetscCall(ROMContactForcesChanged(op, lambda, F));
-    PetscFunctionReturn(0);
-  }
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    PetscReal *f = &rom->felem[12 * e], size = 0;
-    BoltContactElementForces(c, e, lambda, f);
-    for (PetscInt k = 0; k < 12; k++) size += PetscAbsReal(f[k]);
-    bound = PetscMax(bound, rom->DeMax[e] * size);
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
-  PetscCall(BoltExactSumBegin(&rom->sum, n, bound, c->ngpGlobal / 4));
-  for (PetscInt e = 0; e < c->nelem && bound > 0; e++) {
-    if (rom->DeMax[e] == 0) continue;
-    ROMElementForceTerm(rom, e, &rom->felem[12 * e], g);
-    BoltExactSumAdd(&rom->sum, g);
-  }
-  PetscCall(VecGetArray(F, &y));
-  PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
-  if (own) {
-    PetscCall(PetscArraycpy(rom->Fr, y, n));
-    rom->FrVersion = op->state->version;
-    rom->FrValid   = PETSC_TRUE;
-  }
-  PetscCall(VecRestoreArray(F, &y));
-  PetscFunctionReturn(0);
-}
-
-/* A changed point of the nodal quadrature: its node pair (global DOFs of the x components on
-   sides b and a, -1 where clamped), its name (4 x element key + corner) and where its record is. */
+/* A point at a node pair (a changed point of the nodal quadrature, or an element's corner): its
+   node pair (global DOFs of the x components on sides b and a, -1 where clamped), its name
+   (4 x element key + corner) and where its record is. */
 typedef struct {
   PetscInt dofB, dofA, name, pos;
 } ROMPointRecord;
@@ -218,6 +73,263 @@ static int ROMPointByName(const void *x, const void *y)
 {
   const ROMPointRecord *a = (const ROMPointRecord *)x, *b = (const ROMPointRecord *)y;
   return a->name < b->name ? -1 : (a->name > b->name ? 1 : 0);
+}
+
+/* The node pairs of nrec point records: rec sorted by pair, then name; first[k] the first point of
+   pair k, its pos where the pair's points start in rec, the pairs in the order of those points'
+   names. The global DOFs group the points on any partition; only the names order them. Returns
+   the number of pairs. */
+static PetscInt ROMNodePairs(PetscInt nrec, ROMPointRecord rec[], ROMPointRecord first[])
+{
+  PetscInt npair = 0;
+
+  qsort(rec, (size_t)nrec, sizeof(ROMPointRecord), ROMPointByPairThenName);
+  for (PetscInt i = 0; i < nrec; i++) {
+    if (i > 0 && rec[i].dofB == rec[i - 1].dofB && rec[i].dofA == rec[i - 1].dofA) continue;
+    first[npair]     = rec[i];
+    first[npair].pos = i;
+    npair++;
+  }
+  qsort(first, (size_t)npair, sizeof(ROMPointRecord), ROMPointByName);
+  return npair;
+}
+
+/* g = D_p' F_p (n values), owned pair k's term of F_r, each value summed over the three
+   components in that order. */
+static void ROMPairForceTerm(const BoltROM *rom, PetscInt k, PetscReal g_[])
+{
+  const PetscReal *restrict D = &rom->npD[3 * rom->n * k];
+  const PetscReal           f0 = rom->npF[3 * k], f1 = rom->npF[3 * k + 1], f2 = rom->npF[3 * k + 2];
+  PetscReal *restrict       g = g_;
+
+  for (PetscInt j = 0; j < rom->n; j++) g[j] = D[3 * j] * f0 + D[3 * j + 1] * f1 + D[3 * j + 2] * f2;
+}
+
+/* F_p of every owned node pair from the multipliers: the local elements' nodal forces go to the
+   pairs' owners, which sum each pair's points in the order of their names. Returns the global
+   bound max_p max|D_p| |F_p|_1 of the terms (collective). */
+static PetscErrorCode ROMPairForces(BoltROM *rom, const PetscReal lambda[], PetscReal *bound)
+{
+  BoltContactSet *c = rom->contact;
+  PetscReal       b = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < c->nelem; e++) BoltContactElementForces(c, e, lambda, &rom->felem[12 * e]);
+  PetscCall(PetscSFReduceBegin(rom->npSF, MPIU_REAL, rom->felem, rom->npSlotF, MPI_REPLACE));
+  PetscCall(PetscSFReduceEnd(rom->npSF, MPIU_REAL, rom->felem, rom->npSlotF, MPI_REPLACE));
+  for (PetscInt k = 0; k < rom->npOwned; k++) {
+    PetscReal       *F = &rom->npF[3 * k];
+    const PetscReal *s = &rom->npSlotF[3 * rom->npSlotStart[k]];
+    F[0] = s[0];
+    F[1] = s[1];
+    F[2] = s[2];
+    for (PetscInt i = rom->npSlotStart[k] + 1; i < rom->npSlotStart[k + 1]; i++)
+      for (PetscInt l = 0; l < 3; l++) F[l] += rom->npSlotF[3 * i + l];
+    b = PetscMax(b, rom->npDMax[k] * (PetscAbsReal(F[0]) + PetscAbsReal(F[1]) + PetscAbsReal(F[2])));
+  }
+  PetscCall(MPIU_Allreduce(&b, bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
+  PetscFunctionReturn(0);
+}
+
+/* The node pairs' owners and slots, their rows D_p and the forces' star forest. Every rank
+   gathers the names of all points with a node pair and orders the pairs alike: pair k (in the
+   order of its first point's name) belongs to rank k mod size, and its points take its slots in
+   the order of their names. The rows come from the rank of the pair's first point. A pair is
+   live if any of its points may change (mayChange NULL: all may). */
+static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange[])
+{
+  BoltContactSet *c = rom->contact;
+  const PetscInt  n = rom->n, recLen = 1 + 3 * n;
+  PetscMPIInt     size, rank;
+  PetscInt        nmine = 0, total, nrec, npair = 0, nleaves = 0, nsend = 0, own = 0, nslots = 0, *recs, *all, *count, *ilocal, *npts;
+  PetscBool      *live;
+  ROMPointRecord *rec, *first;
+  PetscSFNode    *iremote;
+  PetscReal      *send, *recv;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(rom->comm, &rank));
+  PetscCall(PetscFree6(rom->npSlotStart, rom->npD, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
+  PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));
+  PetscCall(PetscSFDestroy(&rom->npSF));
+  PetscCall(PetscMalloc1(24 * c->nelem + 1, &recs));
+  for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt a = 0; a < 4; a++) {
+      PetscInt *r = &recs[6 * nmine];
+      if (c->elem[e].dofs[3 * a] < 0 && c->elem[e].dofs[12 + 3 * a] < 0) continue; /* both nodes clamped */
+      r[0] = c->elem[e].dofs[12 + 3 * a];
+      r[1] = c->elem[e].dofs[3 * a];
+      r[2] = 4 * c->elem[e].key + a;
+      r[3] = rank;
+      r[4] = 12 * e + 3 * a; /* its forces in felem */
+      r[5] = !mayChange || mayChange[4 * e + a];
+      nmine++;
+    }
+  PetscCall(BoltGatherAll(rom->comm, MPIU_INT, recs, 6 * nmine, &all, NULL, &total, NULL));
+  PetscCall(PetscFree(recs));
+  nrec = total / 6;
+  PetscCall(PetscMalloc6(nrec + 1, &rec, nrec + 1, &first, size, &count, 3 * nmine + 1, &ilocal, nrec + 1, &npts, nrec + 1, &live));
+  PetscCall(PetscMalloc1(3 * nmine + 1, &iremote));
+  for (PetscInt i = 0; i < nrec; i++) {
+    rec[i].dofB = all[6 * i];
+    rec[i].dofA = all[6 * i + 1];
+    rec[i].name = all[6 * i + 2];
+    rec[i].pos  = i;
+  }
+  npair = ROMNodePairs(nrec, rec, first);
+  rom->npGlobal = npair;
+  rom->npOwned  = npair / size + (rank < npair % size ? 1 : 0);
+  rom->npLive   = 0;
+  for (PetscInt k = 0; k < npair; k++) { /* each pair's number of points, and whether it is live */
+    const PetscInt i0 = first[k].pos;
+    npts[k]           = 1;
+    while (i0 + npts[k] < nrec && rec[i0 + npts[k]].dofB == first[k].dofB && rec[i0 + npts[k]].dofA == first[k].dofA) npts[k]++;
+    live[k] = PETSC_FALSE;
+    for (PetscInt t = 0; t < npts[k]; t++) live[k] = (PetscBool)(live[k] || all[6 * rec[i0 + t].pos + 5]);
+    if (k % size == rank) nslots += npts[k];
+    if (k % size == rank && live[k]) rom->npLive++;
+  }
+  PetscCall(PetscMalloc6(rom->npOwned + 1, &rom->npSlotStart, 3 * n * rom->npOwned + 1, &rom->npD, rom->npOwned + 1, &rom->npDMax, 3 * nslots + 1, &rom->npSlotF, 3 * rom->npOwned + 1, &rom->npF, 3 * rom->npOwned + 1, &rom->npFSum));
+  PetscCall(PetscMalloc1(recLen * nmine + 1, &send));
+  for (PetscMPIInt r = 0; r < size; r++) count[r] = 0;
+  for (PetscInt k = 0; k < npair; k++) {
+    const PetscInt    i0 = first[k].pos, m = npts[k];
+    const PetscMPIInt owner = (PetscMPIInt)(k % size);
+    if (owner == rank) rom->npSlotStart[own++] = count[rank];
+    for (PetscInt t = 0; t < m; t++) { /* the pair's points are in name order from i0 */
+      const PetscInt *r = &all[6 * rec[i0 + t].pos];
+      if (r[3] != rank) continue;
+      for (PetscInt l = 0; l < 3; l++, nleaves++) {
+        ilocal[nleaves]        = r[4] + l;
+        iremote[nleaves].rank  = owner;
+        iremote[nleaves].index = 3 * (count[owner] + t) + l;
+      }
+      if (t == 0) { /* the rows, from the first point's element */
+        const PetscReal *D = &rom->De[12 * n * (r[4] / 12) + r[4] % 12];
+        PetscReal       *x = &send[recLen * nsend++];
+        x[0]               = (PetscReal)k;
+        for (PetscInt j = 0; j < n; j++)
+          for (PetscInt l = 0; l < 3; l++) x[1 + 3 * j + l] = D[l + 12 * j];
+      }
+    }
+    count[owner] += m;
+  }
+  rom->npSlotStart[own] = count[rank];
+  PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, send, recLen * nsend, &recv, NULL, &total, NULL));
+  for (PetscInt i = 0; i < total / recLen; i++) {
+    const PetscReal *x = &recv[recLen * i];
+    const PetscInt   k = (PetscInt)x[0];
+    PetscReal        mx = 0;
+    if (k % size != rank) continue;
+    PetscCall(PetscArraycpy(&rom->npD[3 * n * (k / size)], x + 1, 3 * n));
+    for (PetscInt j = 0; j < 3 * n; j++) mx = PetscMax(mx, PetscAbsReal(x[1 + j]));
+    rom->npDMax[k / size] = mx;
+  }
+  if (rom->pairGaps) { /* the rows of the live pairs first, then the others, in the pairs' order */
+    const PetscInt ld = 3 * rom->npOwned;
+    PetscCall(PetscMalloc3(rom->npOwned + 1, &rom->npRowOf, ld * n + 1, &rom->npRows, ld + 1, &rom->npGap));
+    for (PetscInt k = rank, o = 0, nl = 0, nh = 0; k < npair; k += size, o++) rom->npRowOf[o] = live[k] ? 3 * nl++ : 3 * (rom->npLive + nh++);
+    for (PetscInt k = 0; k < rom->npOwned; k++)
+      for (PetscInt j = 0; j < n; j++)
+        for (PetscInt l = 0; l < 3; l++) rom->npRows[rom->npRowOf[k] + l + ld * j] = rom->npD[3 * n * k + 3 * j + l];
+  }
+  PetscCall(PetscFree(recv));
+  PetscCall(PetscFree(send));
+  PetscCall(PetscFree(all));
+  PetscCall(PetscSFCreate(rom->comm, &rom->npSF));
+  PetscCall(PetscSFSetGraph(rom->npSF, 3 * nslots, nleaves, ilocal, PETSC_COPY_VALUES, iremote, PETSC_OWN_POINTER));
+  PetscCall(PetscSFSetUp(rom->npSF));
+  PetscCall(PetscFree6(rec, first, count, ilocal, npts, live));
+  PetscFunctionReturn(0);
+}
+
+/* F_r of the state's own multipliers, where the ROM takes low-rank updates (the strict law):
+   after a change of the active set only the node pairs whose forces changed are summed again.
+   Each rank keeps its partial exact sum on a grid that stays while the terms fit it, and each
+   owned pair's term as it was split onto the grid; a changed pair's old parts are taken out
+   (exactly) and its new term added. The partial sums then hold exactly the parts of the current
+   terms, so F_r has the bits of a sum made afresh on that grid, on any number of ranks. */
+static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal lambda[], Vec F)
+{
+  BoltROM       *rom = (BoltROM *)op->ctx;
+  const PetscInt n   = rom->n;
+  PetscReal      bound, *g = rom->work;
+  PetscBool      fresh;
+  PetscScalar   *y;
+
+  PetscFunctionBeginUser;
+  PetscCall(ROMPairForces(rom, lambda, &bound));
+  /* a new grid where a term outgrows it or the terms shrank so far that it is too coarse */
+  if (!rom->fGridValid || bound > rom->fGridBound || bound < ldexp(rom->fGridBound, -20)) {
+    rom->fGridBound  = bound;
+    rom->fGridValid  = PETSC_TRUE;
+    rom->fPartsValid = PETSC_FALSE;
+  }
+  fresh = (PetscBool)!rom->fPartsValid;
+  PetscCall(BoltExactSumBegin(&rom->sum, n, rom->fGridBound, rom->npGlobal));
+  if (!fresh) PetscCall(PetscArraycpy(rom->sum.acc, rom->fAcc, 2 * n));
+  for (PetscInt k = 0; k < rom->npOwned; k++) {
+    const PetscReal *f    = &rom->npF[3 * k];
+    PetscReal       *fsum = &rom->npFSum[3 * k], *p = &rom->fParts[2 * n * k];
+    if (!fresh && f[0] == fsum[0] && f[1] == fsum[1] && f[2] == fsum[2]) continue;
+    if (!fresh) BoltExactSumRemove(&rom->sum, p, p + n);
+    ROMPairForceTerm(rom, k, g);
+    BoltExactSumAddParts(&rom->sum, g, p, p + n);
+    PetscCall(PetscArraycpy(fsum, f, 3));
+  }
+  PetscCall(PetscArraycpy(rom->fAcc, rom->sum.acc, 2 * n));
+  rom->fPartsValid = PETSC_TRUE;
+  PetscCall(VecGetArray(F, &y));
+  PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
+  PetscCall(PetscArraycpy(rom->Fr, y, n));
+  PetscCall(VecRestoreArray(F, &y));
+  rom->FrVersion = op->state->version;
+  rom->FrValid   = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* F_r = sum_p D_p' F_p over the node pairs of all ranks (F_p the side-b nodal force of the
+   Gauss-point tractions at the pair; side a takes -F_p). A pair's term does not depend on the
+   partition, and the sum over pairs is exact on fixed grids (BoltExactSum), so F_r has the same
+   bits on any number of ranks. The forces of the state's own multipliers are kept while the
+   state's version holds: under the penalty law they are the same every step. */
+static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F)
+{
+  BoltROM       *rom = (BoltROM *)op->ctx;
+  const PetscInt n   = rom->n;
+  /* the state's multipliers, with or without its anchors (a rank without anchors hands lambda
+     itself): a decision every rank takes alike, as the cache skips reductions */
+  const PetscBool own = (PetscBool)(lambda == op->state->lambda || lambda == op->state->lambdaForce);
+  PetscReal       bound, *g = rom->work;
+  PetscScalar    *y;
+
+  PetscFunctionBeginUser;
+  if (own && rom->FrValid && rom->FrVersion == op->state->version) {
+    PetscCall(VecGetArray(F, &y));
+    PetscCall(PetscArraycpy(y, rom->Fr, n));
+    PetscCall(VecRestoreArray(F, &y));
+    PetscFunctionReturn(0);
+  }
+  if (own && rom->update) {
+    PetscCall(ROMContactForcesChanged(op, lambda, F));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(ROMPairForces(rom, lambda, &bound));
+  PetscCall(BoltExactSumBegin(&rom->sum, n, bound, rom->npGlobal));
+  for (PetscInt k = 0; k < rom->npOwned && bound > 0; k++) {
+    ROMPairForceTerm(rom, k, g);
+    BoltExactSumAdd(&rom->sum, g);
+  }
+  PetscCall(VecGetArray(F, &y));
+  PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
+  if (own) {
+    PetscCall(PetscArraycpy(rom->Fr, y, n));
+    rom->FrVersion = op->state->version;
+    rom->FrValid   = PETSC_TRUE;
+  }
+  PetscCall(VecRestoreArray(F, &y));
+  PetscFunctionReturn(0);
 }
 
 /* K_cr += sum_p D_p' dB_p D_p over the node pairs p whose 3 x 3 blocks changed. Under the nodal
@@ -272,15 +384,7 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
     rec[i].name = (PetscInt)r[2];
     rec[i].pos  = recLen * i;
   }
-  /* the node pairs (the global DOFs group them on any partition; only their names order them) */
-  qsort(rec, (size_t)nrec, sizeof(ROMPointRecord), ROMPointByPairThenName);
-  for (PetscInt i = 0; i < nrec; i++) {
-    if (i > 0 && rec[i].dofB == rec[i - 1].dofB && rec[i].dofA == rec[i - 1].dofA) continue;
-    first[npair]     = rec[i];
-    first[npair].pos = i; /* its points: rec[pos ...] while the pair holds */
-    npair++;
-  }
-  qsort(first, (size_t)npair, sizeof(ROMPointRecord), ROMPointByName);
+  npair = ROMNodePairs(nrec, rec, first);
   /* Dm (n x 3m) and Tm = Dm blockdiag(dB_p) */
   PetscCall(PetscMalloc2(3 * n * npair + 1, &Dm, 3 * n * npair + 1, &Tm));
   for (PetscInt k = 0; k < npair; k++) {
@@ -512,6 +616,19 @@ static PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
     PetscCall(BoltContactSetGapsOf(c, gap));
     PetscFunctionReturn(0);
   }
+  if (rom->pairGaps) { /* the owned pairs' gaps (the held ones once), sent to their points */
+    PetscCall(VecGetArrayRead(q, &x));
+    ROMRowsTimes(rom->heldRowsDone && !rom->gapsEverywhere ? 3 * rom->npLive : 3 * rom->npOwned, rom->n, rom->npRows, 3 * rom->npOwned, x, rom->npGap);
+    PetscCall(VecRestoreArrayRead(q, &x));
+    rom->heldRowsDone = PETSC_TRUE;
+    for (PetscInt k = 0; k < rom->npOwned; k++)
+      for (PetscInt i = rom->npSlotStart[k]; i < rom->npSlotStart[k + 1]; i++)
+        for (PetscInt l = 0; l < 3; l++) rom->npSlotF[3 * i + l] = PetscRealPart(rom->npGap[rom->npRowOf[k] + l]);
+    PetscCall(PetscArrayzero(gap, 12 * c->nelem)); /* a point whose nodes are both clamped has no gap */
+    PetscCall(PetscSFBcastBegin(rom->npSF, MPIU_REAL, rom->npSlotF, gap, MPI_REPLACE));
+    PetscCall(PetscSFBcastEnd(rom->npSF, MPIU_REAL, rom->npSlotF, gap, MPI_REPLACE));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecGetArrayRead(q, &x));
   /* the rows of points that may change; those of held points (their state is kept, so no decision
      reads their gaps) once, for gaps that stay defined */
@@ -639,6 +756,15 @@ static PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
   /* friction reads the tangential gaps too (the augmented ROM takes u_c = V_c q instead) */
   rom->wholeRows = (PetscBool)(!rom->flat || c->law.friction);
   width          = rom->wholeRows ? 3 : 1;
+  /* each point's gap is its own node pair's: the pairs' owners make them (ROMSetUpPairForces) */
+  rom->pairGaps = (PetscBool)(rom->wholeRows && c->quadrature == BOLT_QUADRATURE_NODAL && !rom->augment);
+  if (rom->pairGaps) {
+    rom->nGapRows = rom->nLiveRows = 0;
+    rom->heldRowsDone = PETSC_FALSE;
+    PetscCall(PetscMalloc2(1, &rom->Rn, 1, &rom->gnRow));
+    PetscCall(PetscFree4(first, next, rowGp, rowNode));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt i = 0; i < c->nlocal; i++) first[i] = -1;
   rom->nGapRows = 0;
   for (PetscInt gp = 0; gp < ngp; gp++) {
@@ -771,8 +897,9 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
      (the strict law's penalty ROM); the stick law's keeps refactorising, as in the paper */
   rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (rom->contact->law.strict && !rom->augment ? (3 * n) / 5 : 0);
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
-  PetscCall(PetscFree4(rom->fAcc, rom->fOwn, rom->fNew, rom->fParts));
-  if (rom->update) PetscCall(PetscMalloc4(2 * n + 1, &rom->fAcc, 12 * rom->contact->nelem + 1, &rom->fOwn, 12 * rom->contact->nelem + 1, &rom->fNew, 2 * n * rom->contact->nelem + 1, &rom->fParts));
+  PetscCall(ROMSetUpPairForces(rom, op->state->mayChange));
+  PetscCall(PetscFree2(rom->fAcc, rom->fParts));
+  if (rom->update) PetscCall(PetscMalloc2(2 * n + 1, &rom->fAcc, 2 * n * rom->npOwned + 1, &rom->fParts));
   rom->fGridValid = rom->fPartsValid = PETSC_FALSE;
   *opp = op;
   PetscFunctionReturn(0);
