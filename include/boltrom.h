@@ -616,7 +616,7 @@ typedef struct {
   PetscBool       pairGaps;
   PetscInt        npLive;        /* owned pairs with a point that may change */
   PetscInt       *npRowOf;       /* per owned pair: its first row in npRows */
-  PetscScalar    *npRows;        /* 3 npOwned x n, column-major: the owned pairs' rows of D */
+  PetscScalar    *npRows;        /* 3 npOwned x n, column-major: npD's rows again, as one block for the gaps' product (npD keeps a pair's rows together for its force term) */
   PetscScalar    *npGap;         /* 3 npOwned: scratch */
   /* with low-rank updates, F_r of the state's multipliers is updated for the pairs whose forces changed */
   PetscReal      *fAcc;          /* 2n: this rank's exact partial sums */

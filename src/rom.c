@@ -4,10 +4,10 @@
    one owner rank) and K_cr = sum_e V_e' K_e V_e (as D_e' M_e D_e, updated only for elements
    whose active points changed), with D = V_b - V_a at the node pairs. Both sums have the same
    bits on any partition (exact sums over ranks; K_cr under the nodal quadrature by one product
-   every rank makes on the same gathered node pairs), and so has the ROM's history. Under the penalty law a time step needs neither
-   u_c nor the sums while the contact state holds: the gaps come from node-pair rows (normal ones
-   on flat surfaces), and the forces, K_cr and the opening test's coefficients are kept with the
-   state's version. */
+   every rank makes on the same gathered node pairs), and so has the ROM's history. Under the
+   penalty law a time step needs neither u_c nor the sums while the contact state holds: the gaps
+   come from node-pair rows (normal ones on flat surfaces), and the forces, K_cr and the opening
+   test's coefficients are kept with the state's version. */
 #include "boltrom.h"
 #include <petscblaslapack.h>
 
