@@ -543,6 +543,8 @@ typedef struct {
   PetscScalar    *work, *work2, *dK, *packed; /* scratch (packed: an upper triangle) */
   PetscReal      *dMe;               /* 144 per local contact element: scratch of the K_cr update */
   PetscInt       *dirtyElems;        /* per local contact element: scratch of the K_cr update */
+  PetscReal      *kcrSend, *kcrRecv, *kcrDT; /* scratch of the node-pair K_cr update, kept between updates */
+  PetscInt        kcrSendAlloc, kcrRecvAlloc, kcrDTAlloc; /* (a fresh megabyte-sized buffer per update spent its time in page faults) */
   BoltExactSum    sum;               /* the reductions over ranks, partition-independent */
   /* what the online phase keeps while the contact state's version holds (BoltContactState) */
   PetscScalar    *Fr;                /* n: the reduced forces of the state's multipliers */

@@ -978,6 +978,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
   PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
+  PetscCall(PetscFree3(rom->kcrSend, rom->kcrRecv, rom->kcrDT));
   PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
   PetscCall(BoltExactSumDestroy(&rom->sum));

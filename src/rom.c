@@ -332,13 +332,78 @@ static PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[
   PetscFunctionReturn(0);
 }
 
+/* K_cr += the symmetric matrix whose upper triangle is packed (column by column): the triangle
+   into both halves, so that K_cr stays exactly symmetric. */
+static PetscErrorCode ROMAddPackedToKcr(BoltROM *rom, const PetscScalar packed[])
+{
+  const PetscInt n = rom->n;
+  PetscScalar   *K;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatDenseGetArray(rom->Kcr, &K));
+  for (PetscInt l = 0, k = 0; l < n; l++)
+    for (PetscInt j = 0; j <= l; j++, k++) {
+      K[j + n * l] += packed[k];
+      if (j != l) K[l + n * j] += packed[k];
+    }
+  PetscCall(MatDenseRestoreArray(rom->Kcr, &K));
+  PetscCall(MatAssemblyBegin(rom->Kcr, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(rom->Kcr, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* K_cr += Tm Dm' (n x n, symmetric), by its upper triangle only and shared among the ranks.
+   The columns are cut into ROM_KCR_BLOCKS blocks of about equal triangle (bounds n sqrt(b/B),
+   set by n alone); a block's part of the triangle is one GEMM of its rows 0..c1 and its columns
+   c0..c1, made by the rank that owns the block. Ranks own consecutive blocks, so their packed
+   columns follow each other as in the packed triangle and one Allgatherv puts the whole triangle
+   on every rank. Each block is the same call on the same data on any number of ranks: K_cr keeps
+   the same bits on any partition, and the work per rank is a quarter of a full GEMM on two. */
+#define ROM_KCR_BLOCKS 8
+static PetscErrorCode ROMAddUpperProduct(BoltROM *rom, PetscInt npair, const PetscReal Tm[], const PetscReal Dm[])
+{
+  const PetscInt n = rom->n;
+  PetscMPIInt    size, rank, *rcounts, *rdispls;
+  PetscInt       cut[ROM_KCR_BLOCKS + 1];
+  PetscBLASInt   bk, bn;
+  PetscScalar    one = 1.0, zero = 0.0, *packed = rom->packed, *C = rom->dK;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(rom->comm, &rank));
+  PetscCall(PetscBLASIntCast(3 * npair, &bk));
+  PetscCall(PetscBLASIntCast(n, &bn));
+  for (PetscInt b = 0; b <= ROM_KCR_BLOCKS; b++) cut[b] = (PetscInt)PetscFloorReal(n * PetscSqrtReal((PetscReal)b / ROM_KCR_BLOCKS) + 0.5);
+  cut[ROM_KCR_BLOCKS] = n;
+  PetscCall(PetscMalloc2(size, &rcounts, size, &rdispls));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    const PetscInt c0 = cut[(ROM_KCR_BLOCKS * r) / size], c1 = cut[(ROM_KCR_BLOCKS * (r + 1)) / size];
+    PetscCall(PetscMPIIntCast(c1 * (c1 + 1) / 2 - c0 * (c0 + 1) / 2, &rcounts[r]));
+    PetscCall(PetscMPIIntCast(c0 * (c0 + 1) / 2, &rdispls[r]));
+  }
+  for (PetscInt b = (ROM_KCR_BLOCKS * rank) / size; b < (ROM_KCR_BLOCKS * (rank + 1)) / size; b++) {
+    const PetscInt c0 = cut[b], c1 = cut[b + 1];
+    PetscBLASInt   bm, bw;
+    if (c1 <= c0) continue;
+    PetscCall(PetscBLASIntCast(c1, &bm));
+    PetscCall(PetscBLASIntCast(c1 - c0, &bw));
+    PetscCallBLAS("BLASgemm", BLASgemm_("N", "T", &bm, &bw, &bk, &one, Tm, &bn, &Dm[c0], &bn, &zero, C, &bm));
+    for (PetscInt l = c0, k = l * (l + 1) / 2; l < c1; l++)
+      for (PetscInt j = 0; j <= l; j++) packed[k++] = C[j + c1 * (l - c0)];
+  }
+  PetscCallMPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, packed, rcounts, rdispls, MPIU_SCALAR, rom->comm));
+  PetscCall(PetscFree2(rcounts, rdispls));
+  PetscCall(ROMAddPackedToKcr(rom, packed));
+  PetscFunctionReturn(0);
+}
+
 /* K_cr += sum_p D_p' dB_p D_p over the node pairs p whose 3 x 3 blocks changed. Under the nodal
    quadrature an element's M_e is block diagonal in its four points, and the points of the (up to
    four) elements at a node pair share its rows D_p of D = V_b - V_a: one term per node pair, and
    all of them in one BLAS-3 product, instead of an n x n exact sum per element. Every rank
    gathers the changed points (name, block, rows), sums each node pair's blocks in the order of
-   the points' names and takes the node pairs in the order of their first point's name, then
-   makes the same product on the same data: K_cr has the same bits on any partition. */
+   the points' names and takes the node pairs in the order of their first point's name, so all
+   ranks hold the same factors Tm and Dm, whose product they share (ROMAddUpperProduct). */
 static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty, const PetscInt dirty[], const PetscReal delta[])
 {
   BoltContactSet *c = rom->contact;
@@ -346,10 +411,14 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
   PetscInt        nsend = 0, total = 0, nrec, npair = 0;
   PetscReal      *send, *recv, *Dm, *Tm;
   ROMPointRecord *rec, *first;
-  PetscScalar    *K;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(recLen * 4 * ndirty + 1, &send));
+  if (rom->kcrSendAlloc < recLen * 4 * ndirty + 1) {
+    PetscCall(PetscFree(rom->kcrSend));
+    rom->kcrSendAlloc = PetscMax(recLen * 4 * ndirty + 1, 2 * rom->kcrSendAlloc);
+    PetscCall(PetscMalloc1(rom->kcrSendAlloc, &rom->kcrSend));
+  }
+  send = rom->kcrSend;
   for (PetscInt i = 0; i < ndirty; i++) {
     const PetscInt   e = dirty[i];
     const PetscReal *d = &delta[144 * i], *D = &rom->De[12 * n * e];
@@ -373,8 +442,8 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
       nsend += recLen;
     }
   }
-  PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, send, nsend, &recv, NULL, &total, NULL));
-  PetscCall(PetscFree(send));
+  PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, send, nsend, &rom->kcrRecv, &rom->kcrRecvAlloc, &total, NULL));
+  recv = rom->kcrRecv;
   nrec = total / recLen;
   PetscCall(PetscMalloc2(nrec + 1, &rec, nrec + 1, &first));
   for (PetscInt i = 0; i < nrec; i++) {
@@ -386,7 +455,13 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
   }
   npair = ROMNodePairs(nrec, rec, first);
   /* Dm (n x 3m) and Tm = Dm blockdiag(dB_p) */
-  PetscCall(PetscMalloc2(3 * n * npair + 1, &Dm, 3 * n * npair + 1, &Tm));
+  if (rom->kcrDTAlloc < 6 * n * npair + 2) {
+    PetscCall(PetscFree(rom->kcrDT));
+    rom->kcrDTAlloc = PetscMax(6 * n * npair + 2, 2 * rom->kcrDTAlloc);
+    PetscCall(PetscMalloc1(rom->kcrDTAlloc, &rom->kcrDT));
+  }
+  Dm = rom->kcrDT;
+  Tm = Dm + 3 * n * npair + 1;
   for (PetscInt k = 0; k < npair; k++) {
     PetscReal       dB[9];
     const PetscReal *r0 = &recv[rec[first[k].pos].pos];
@@ -397,26 +472,8 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
     for (PetscInt q = 0; q < 3; q++)
       for (PetscInt j = 0; j < n; j++) Tm[3 * n * k + n * q + j] = r0[12 + j] * dB[q] + r0[12 + n + j] * dB[3 + q] + r0[12 + 2 * n + j] * dB[6 + q];
   }
-  PetscCall(PetscFree(recv));
   PetscCall(PetscFree2(rec, first));
-  if (npair > 0) {
-    PetscBLASInt bn, bk;
-    PetscScalar  one = 1.0, zero = 0.0, *dK = rom->dK;
-    PetscCall(PetscBLASIntCast(n, &bn));
-    PetscCall(PetscBLASIntCast(3 * npair, &bk));
-    PetscCallBLAS("BLASgemm", BLASgemm_("N", "T", &bn, &bn, &bk, &one, Tm, &bn, Dm, &bn, &zero, dK, &bn));
-    /* its upper triangle into both halves: K_cr stays exactly symmetric */
-    PetscCall(MatDenseGetArray(rom->Kcr, &K));
-    for (PetscInt l = 0; l < n; l++)
-      for (PetscInt j = 0; j <= l; j++) {
-        K[j + n * l] += dK[j + n * l];
-        if (j != l) K[l + n * j] += dK[j + n * l];
-      }
-    PetscCall(MatDenseRestoreArray(rom->Kcr, &K));
-    PetscCall(MatAssemblyBegin(rom->Kcr, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(rom->Kcr, MAT_FINAL_ASSEMBLY));
-  }
-  PetscCall(PetscFree2(Dm, Tm));
+  if (npair > 0) PetscCall(ROMAddUpperProduct(rom, npair, Tm, Dm));
   PetscFunctionReturn(0);
 }
 
@@ -428,7 +485,6 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
   const PetscInt  n   = rom->n;
   PetscInt        ndirty = 0, *dirty = rom->dirtyElems;
   PetscReal       bound = 0, *delta = rom->dMe, *T = rom->work2, *dK = rom->dK, Knew[576];
-  PetscScalar    *K;
 
   PetscFunctionBeginUser;
   /* the same state as at the last update: nothing is due (and no rank needs to ask the others) */
@@ -474,15 +530,7 @@ static PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
       BoltExactSumAdd(&rom->sum, packed);
     }
     PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, packed));
-    PetscCall(MatDenseGetArray(rom->Kcr, &K));
-    for (PetscInt l = 0, k = 0; l < n; l++)
-      for (PetscInt j = 0; j <= l; j++, k++) {
-        K[j + n * l] += packed[k];
-        if (j != l) K[l + n * j] += packed[k];
-      }
-    PetscCall(MatDenseRestoreArray(rom->Kcr, &K));
-    PetscCall(MatAssemblyBegin(rom->Kcr, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(rom->Kcr, MAT_FINAL_ASSEMBLY));
+    PetscCall(ROMAddPackedToKcr(rom, packed));
   }
   rom->KcrVersion = s->version;
   rom->KcrValid   = PETSC_TRUE;

@@ -18,7 +18,8 @@
 
    Every rank holds the references and the correction, built from the slots' records gathered
    and put in the order of their names (element key and node): the ROM's history has the same
-   bits on any partition (each rank makes the same BLAS and LAPACK calls on the same data). */
+   bits on any partition (each rank makes the same BLAS and LAPACK calls on the same data, or
+   takes its share of calls cut the same way on any number of ranks and gathers the others'). */
 #include "boltrom.h"
 #include <petscblaslapack.h>
 
@@ -141,6 +142,39 @@ static PetscErrorCode ROMReferenceNew(BoltROM *rom, BoltOperator *op, BoltDual *
 
 /* The correction of reference r for the current state, if it fits: the slots' records gathered
    in the order of their names, new slots added to its pool, I + S G factorised. */
+/* Z = A_ref^-1 U for the pool's nnew new slots from slot first, shared among the ranks: the slots
+   are cut into chunks of ROM_SOLVE_CHUNK (set by nnew alone), each solved by one rank, the ranks
+   owning consecutive chunks, and one Allgatherv puts every column on every rank. A chunk is the
+   same solve on the same data on any number of ranks, so Z keeps its bits on any partition. */
+#define ROM_SOLVE_CHUNK 16
+static PetscErrorCode ROMSolveNewSlots(BoltROM *rom, ROMReference *ref, PetscInt first, PetscInt nnew)
+{
+  const PetscInt n = rom->n, nchunk = (nnew + ROM_SOLVE_CHUNK - 1) / ROM_SOLVE_CHUNK;
+  PetscMPIInt    size, rank, *counts, *displs;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(rom->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(rom->comm, &rank));
+  PetscCall(PetscMalloc2(size, &counts, size, &displs));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    const PetscInt s0 = PetscMin(nnew, ROM_SOLVE_CHUNK * ((nchunk * r) / size)), s1 = PetscMin(nnew, ROM_SOLVE_CHUNK * ((nchunk * (r + 1)) / size));
+    PetscCall(PetscMPIIntCast(3 * n * (first + s0), &displs[r]));
+    PetscCall(PetscMPIIntCast(3 * n * (s1 - s0), &counts[r]));
+  }
+  for (PetscInt b = (nchunk * rank) / size; b < (nchunk * (rank + 1)) / size; b++) {
+    const PetscInt s0 = first + ROM_SOLVE_CHUNK * b, ns = PetscMin(ROM_SOLVE_CHUNK, first + nnew - s0);
+    Mat            B, X;
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, 3 * ns, &ref->U[3 * n * s0], &B));
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, 3 * ns, &ref->Z[3 * n * s0], &X));
+    PetscCall(KSPMatSolve(ref->ksp, B, X));
+    PetscCall(MatDestroy(&B));
+    PetscCall(MatDestroy(&X));
+  }
+  if (size > 1) PetscCallMPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, ref->Z, counts, displs, MPIU_REAL, rom->comm));
+  PetscCall(PetscFree2(counts, displs));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *done)
 {
   BoltROMUpdate  *u   = rom->update;
@@ -189,11 +223,10 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   }
   PetscCall(PetscSortIntWithArray(nrec, u->name, u->perm)); /* names in order, perm: where their records are */
   if (3 * nrec > u->maxRank || ref->nslot + nnew > u->alloc) PetscFunctionReturn(0);
-  /* new slots join the pool, side by side after the others: Z = A_ref^-1 U in one solve with
-     many right-hand sides, and G's new columns U' Z_new (and rows, by symmetry) */
+  /* new slots join the pool, side by side after the others: Z = A_ref^-1 U in solves with many
+     right-hand sides shared among the ranks, and G's new columns U' Z_new (and rows, by symmetry) */
   if (nnew) {
     const PetscInt first = ref->nslot, mo = 3 * first, mn = 3 * nnew;
-    Mat            B, X;
     PetscBLASInt   bn, bmo, bmn, bld;
     PetscReal      one = 1, zero = 0;
     for (PetscInt i = 0; i < nrec; i++) {
@@ -202,11 +235,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
       PetscCall(PetscArraycpy(&ref->U[3 * n * ref->nslot], r0 + recLen, 3 * n));
       r0[1] = (PetscReal)ref->nslot++;
     }
-    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, mn, &ref->U[3 * n * first], &B));
-    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, mn, &ref->Z[3 * n * first], &X));
-    PetscCall(KSPMatSolve(ref->ksp, B, X));
-    PetscCall(MatDestroy(&B));
-    PetscCall(MatDestroy(&X));
+    PetscCall(ROMSolveNewSlots(rom, ref, first, nnew));
     PetscCall(PetscBLASIntCast(n, &bn));
     PetscCall(PetscBLASIntCast(mo + mn, &bmo));
     PetscCall(PetscBLASIntCast(mn, &bmn));
