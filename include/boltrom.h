@@ -633,6 +633,7 @@ PetscErrorCode BoltROMUpdateCreate(BoltROM *, BoltOperator *, PetscInt);
 PetscErrorCode BoltROMUpdateSettle(BoltOperator *);
 void           BoltROMUpdateSummed(BoltROMUpdate *, BoltROM *, PetscInt);
 PetscErrorCode BoltROMUpdateView(BoltROMUpdate *, PetscViewer);
+PetscInt       BoltROMUpdateLargestBatch(const BoltROMUpdate *);
 PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **);
 
 #include "boltrom_krylov.h" /* BoltKrylov: the basis's options */

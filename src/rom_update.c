@@ -57,6 +57,7 @@ struct BoltROMUpdate_s {
   PetscInt     sendAlloc, recvAlloc, recAlloc;
   PetscInt    *name, *perm;      /* per gathered record: its name, and where it starts */
   PetscInt     updates, references;
+  PetscInt     largestBatch; /* the most slots that joined a pool at once */
 };
 
 static PetscErrorCode ROMUpdateGrow(PetscReal **a, PetscInt *alloc, PetscInt need)
@@ -227,6 +228,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
      right-hand sides shared among the ranks, and G's new columns U' Z_new (and rows, by symmetry) */
   if (nnew) {
     const PetscInt first = ref->nslot, mo = 3 * first, mn = 3 * nnew;
+    u->largestBatch      = PetscMax(u->largestBatch, nnew);
     PetscBLASInt   bn, bmo, bmn, bld;
     PetscReal      one = 1, zero = 0;
     for (PetscInt i = 0; i < nrec; i++) {
@@ -466,8 +468,14 @@ PetscErrorCode BoltROMUpdateView(BoltROMUpdate *u, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
   if (!u) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  set changes taken as low-rank updates of up to %d kept factorisations, rank up to %" PetscInt_FMT " (so far %" PetscInt_FMT " updates, %" PetscInt_FMT " factorisations)\n", ROM_REFERENCES, u->maxRank, u->updates, u->references));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  set changes taken as low-rank updates of up to %d kept factorisations, rank up to %" PetscInt_FMT " (so far %" PetscInt_FMT " updates, %" PetscInt_FMT " factorisations, at most %" PetscInt_FMT " slots joining a pool at once)\n", ROM_REFERENCES, u->maxRank, u->updates, u->references, u->largestBatch));
   PetscFunctionReturn(0);
+}
+
+/* The most slots that joined a pool at once (their solves are shared among the ranks in chunks). */
+PetscInt BoltROMUpdateLargestBatch(const BoltROMUpdate *u)
+{
+  return u ? u->largestBatch : 0;
 }
 
 PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **up)

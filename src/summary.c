@@ -219,6 +219,7 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONInt(j, "cone_pairs", rom->nConePairs));
   PetscCall(BoltJSONInt(j, "cone_modes", rom->nConeModes));
   PetscCall(BoltJSONInt(j, "update_rank", rom->updateRankUsed));
+  PetscCall(BoltJSONInt(j, "update_largest_batch", BoltROMUpdateLargestBatch(rom->update)));
   PetscCall(BoltJSONInt(j, "held_points", s->romRun->op->state->mayChange != NULL));
   PetscCall(SummaryNewmarkRun(j, s->romRun, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));

@@ -399,3 +399,32 @@ def test_backbone_and_loop_work_on_known_signals():
     T = 0.02
     t = np.arange(0, 8 * T + 0.5 * dt, dt)
     assert per_cycle(t, t ** 2, T, 8) == pytest.approx([(2 * k + 1) * T ** 2 for k in range(8)], rel=1e-9)
+
+
+def test_frictional_rom_with_shared_updates_same_on_1_and_2_ranks(joint_small, tmp_path):
+    """The interface-reduced ROM under friction (a 300 N sine along x, 5 kN, level 0.5), one ROM
+    file run on one and on two ranks: the same history to the last bit (its dissipation to
+    round-off). Its set changes are taken
+    as low-rank updates whose new slots' solves, and K_cr's product for each new reference, are
+    shared among the ranks in pieces cut by their size alone; at least once here more slots join
+    a pool than one piece holds (16), so on two ranks both take a share."""
+    mesh, _ = joint_small
+    rom_file = tmp_path / "r.rom.h5"
+    scene = ["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-preload_force", "5000",
+             "-load_force", "300", "-load_history", "sine", "-load_frequency", "50", "-load_direction", "1,0,0",
+             "-probe_component", "0", "-contact_law", "coulomb", "-contact_friction", str(MU), "-fom", "false",
+             "-rom", "true", "-rom_file", rom_file, "-output_name", "run"]
+    run_summary(scene + ["-ts_end", "1e-4", "-output", "false"], tmp_path / "build", ranks=2)
+    hist, summ = {}, {}
+    for ranks in (1, 2):
+        d = tmp_path / f"r{ranks}"
+        summ[ranks] = run_summary(scene + ["-ts_end", "0.005", "-output_dir", d], d, ranks=ranks)["rom"]
+        with h5py.File(d / "run.h5") as f:
+            hist[ranks] = (np.array(f["rom/probe"]), np.array(f["rom/dissipated"]))
+    assert summ[1]["source"] == "file" and summ[1]["low_rank_updates"] > 20 and summ[1]["factorizations"] > 1
+    assert summ[1]["update_largest_batch"] > 16 and summ[2]["update_largest_batch"] == summ[1]["update_largest_batch"]
+    assert hist[1][1][-1] > 0  # it slips
+    assert np.array_equal(hist[1][0], hist[2][0])
+    # the dissipation is summed over the points of each rank, then over the ranks (not exactly):
+    # the same to round-off
+    assert np.allclose(hist[1][1], hist[2][1], rtol=1e-12, atol=1e-12 * hist[1][1][-1])
