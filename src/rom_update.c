@@ -141,8 +141,6 @@ static PetscErrorCode ROMReferenceNew(BoltROM *rom, BoltOperator *op, BoltDual *
   PetscFunctionReturn(0);
 }
 
-/* The correction of reference r for the current state, if it fits: the slots' records gathered
-   in the order of their names, new slots added to its pool, I + S G factorised. */
 /* Z = A_ref^-1 U for the pool's nnew new slots from slot first, shared among the ranks: the slots
    are cut into chunks of ROM_SOLVE_CHUNK (set by nnew alone), each solved by one rank, the ranks
    owning consecutive chunks, and one Allgatherv puts every column on every rank. A chunk is the
@@ -176,6 +174,8 @@ static PetscErrorCode ROMSolveNewSlots(BoltROM *rom, ROMReference *ref, PetscInt
   PetscFunctionReturn(0);
 }
 
+/* The correction of reference r for the current state, if it fits: the slots' records gathered
+   in the order of their names, new slots added to its pool, I + S G factorised. */
 static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *done)
 {
   BoltROMUpdate  *u   = rom->update;
@@ -228,9 +228,9 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
      right-hand sides shared among the ranks, and G's new columns U' Z_new (and rows, by symmetry) */
   if (nnew) {
     const PetscInt first = ref->nslot, mo = 3 * first, mn = 3 * nnew;
-    u->largestBatch      = PetscMax(u->largestBatch, nnew);
     PetscBLASInt   bn, bmo, bmn, bld;
     PetscReal      one = 1, zero = 0;
+    u->largestBatch = PetscMax(u->largestBatch, nnew);
     for (PetscInt i = 0; i < nrec; i++) {
       PetscReal *r0 = &u->recv[u->perm[i]];
       if (r0[1] >= 0) continue;
