@@ -523,6 +523,7 @@ PetscErrorCode BoltExactSumDestroy(BoltExactSum *);
 
 /* ------------------------------------------------------------------ gather.c */
 PetscErrorCode BoltGatherAll(MPI_Comm, MPI_Datatype, const void *, PetscInt, void *, PetscInt *, PetscInt *, PetscInt *);
+PetscErrorCode BoltGrowReal(PetscReal **, PetscInt *, PetscInt);
 
 /* ------------------------------------------------------------------ reduction.c, rom.c */
 /* The reduced model: projected matrices (replicated on every rank, small and dense), the rows

@@ -1,5 +1,6 @@
 /* Records of every rank gathered on every rank in rank order: the counts first, then one
-   MPI_Allgatherv. The contact set (nodes, node pairs) and the ROM's K_cr updates use it. */
+   MPI_Allgatherv. The contact set (nodes, node pairs) and the ROM's K_cr updates use it; and the
+   grow-only scratch arrays such gathers and their callers keep between calls. */
 #include "boltrom.h"
 
 /* Gathers n items of type from each rank. *(void **)recv is made to hold all of them (plus one,
@@ -34,5 +35,17 @@ PetscErrorCode BoltGatherAll(MPI_Comm comm, MPI_Datatype type, const void *send,
   *total = sum;
   if (mine) *mine = displs[rank];
   PetscCall(PetscFree2(counts, displs));
+  PetscFunctionReturn(0);
+}
+
+/* A scratch array kept between calls: *a holds at least need values afterwards, reallocated (to
+   twice its size or need, whichever is more; the contents are not kept) only when too small. */
+PetscErrorCode BoltGrowReal(PetscReal **a, PetscInt *alloc, PetscInt need)
+{
+  PetscFunctionBeginUser;
+  if (need <= *alloc) PetscFunctionReturn(0);
+  PetscCall(PetscFree(*a));
+  *alloc = PetscMax(need, 2 * *alloc);
+  PetscCall(PetscMalloc1(*alloc, a));
   PetscFunctionReturn(0);
 }

@@ -413,11 +413,7 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
   ROMPointRecord *rec, *first;
 
   PetscFunctionBeginUser;
-  if (rom->kcrSendAlloc < recLen * 4 * ndirty + 1) {
-    PetscCall(PetscFree(rom->kcrSend));
-    rom->kcrSendAlloc = PetscMax(recLen * 4 * ndirty + 1, 2 * rom->kcrSendAlloc);
-    PetscCall(PetscMalloc1(rom->kcrSendAlloc, &rom->kcrSend));
-  }
+  PetscCall(BoltGrowReal(&rom->kcrSend, &rom->kcrSendAlloc, recLen * 4 * ndirty + 1));
   send = rom->kcrSend;
   for (PetscInt i = 0; i < ndirty; i++) {
     const PetscInt   e = dirty[i];
@@ -455,11 +451,7 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
   }
   npair = ROMNodePairs(nrec, rec, first);
   /* Dm (n x 3m) and Tm = Dm blockdiag(dB_p) */
-  if (rom->kcrDTAlloc < 6 * n * npair + 2) {
-    PetscCall(PetscFree(rom->kcrDT));
-    rom->kcrDTAlloc = PetscMax(6 * n * npair + 2, 2 * rom->kcrDTAlloc);
-    PetscCall(PetscMalloc1(rom->kcrDTAlloc, &rom->kcrDT));
-  }
+  PetscCall(BoltGrowReal(&rom->kcrDT, &rom->kcrDTAlloc, 6 * n * npair + 2));
   Dm = rom->kcrDT;
   Tm = Dm + 3 * n * npair + 1;
   for (PetscInt k = 0; k < npair; k++) {

@@ -60,16 +60,6 @@ struct BoltROMUpdate_s {
   PetscInt     largestBatch; /* the most slots that joined a pool at once */
 };
 
-static PetscErrorCode ROMUpdateGrow(PetscReal **a, PetscInt *alloc, PetscInt need)
-{
-  PetscFunctionBeginUser;
-  if (need <= *alloc) PetscFunctionReturn(0);
-  PetscCall(PetscFree(*a));
-  *alloc = PetscMax(need, 2 * *alloc);
-  PetscCall(PetscMalloc1(*alloc, a));
-  PetscFunctionReturn(0);
-}
-
 /* Whether slot a of a 12 x 12 difference is non-zero (its rows or its columns). */
 static PetscBool ROMSlotDiffers(const PetscReal *cur, const PetscReal *ref, PetscInt a)
 {
@@ -191,7 +181,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++)
       if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) nsend += recLen + (ref->slotOf[4 * e + a] < 0 ? 3 * n : 0);
-  PetscCall(ROMUpdateGrow(&u->send, &u->sendAlloc, nsend + 1));
+  PetscCall(BoltGrowReal(&u->send, &u->sendAlloc, nsend + 1));
   nsend = 0;
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {

@@ -404,10 +404,10 @@ def test_backbone_and_loop_work_on_known_signals():
 def test_frictional_rom_with_shared_updates_same_on_1_and_2_ranks(joint_small, tmp_path):
     """The interface-reduced ROM under friction (a 300 N sine along x, 5 kN, level 0.5), one ROM
     file run on one and on two ranks: the same history to the last bit (its dissipation to
-    round-off). Its set changes are taken
-    as low-rank updates whose new slots' solves, and K_cr's product for each new reference, are
-    shared among the ranks in pieces cut by their size alone; at least once here more slots join
-    a pool than one piece holds (16), so on two ranks both take a share."""
+    round-off). Its set changes are taken as low-rank updates whose new slots' solves, and K_cr's
+    product for each new reference, are shared among the ranks in pieces cut by their size alone;
+    at least once here more slots join a pool than one piece holds (16), so on two ranks both take
+    a share."""
     mesh, _ = joint_small
     rom_file = tmp_path / "r.rom.h5"
     scene = ["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-preload_force", "5000",
