@@ -236,6 +236,7 @@ PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *, Mat *);
 PetscErrorCode BoltContactSetScatter(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
 PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[], Vec);
+PetscErrorCode BoltContactSetNodalStates(BoltContactSet *, const unsigned char[], Vec);
 void           BoltContactElementForces(BoltContactSet *, PetscInt, const PetscReal[], PetscReal[12]);
 PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, const PetscReal[], PetscReal[]);
 PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *, PetscInt, PetscReal, PetscReal, const PetscBool[], const PetscBool[], const PetscReal[], PetscReal[576]);
@@ -267,6 +268,12 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], 
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
 PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);
 PetscErrorCode BoltContactStateNodalForces(BoltContactState *, Vec);
+/* A contact point's state in the output (BoltContactStatePointCodes): open, closed and sticking
+   (inside the cone under friction), or closed and sliding (on the cone, or a re-closed pair that
+   slides under -contact_reclose slide). A node's state in the output is 1 + the code of most of
+   the points at it (BoltOutputContactState), 0 where it has none. */
+enum { BOLT_POINT_OPEN = 0, BOLT_POINT_STICK = 1, BOLT_POINT_SLIP = 2 };
+void           BoltContactStatePointCodes(BoltContactState *, unsigned char[]);
 PetscErrorCode BoltContactStateTractionStats(BoltContactState *, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode BoltContactStateDot(BoltContactState *, const PetscReal[], const PetscReal[], PetscReal *);
 PetscErrorCode BoltContactStatePenetration(BoltContactState *, PetscReal[], PetscReal *);
@@ -485,6 +492,7 @@ typedef struct {
   PetscInt        snapshotEvery, nsnap;
   Vec            *snap;
   PetscReal      *snapTime;
+  unsigned char  *snapCodes;  /* per snapshot, each local contact point's state (BoltContactStatePointCodes) */
   PetscReal       tOnline;
   PetscReal       staticOuter, staticInner;
   PetscInt        staticFactorizations, staticSolves;
@@ -701,6 +709,7 @@ typedef struct {
   PetscBool fieldOnCells[16];
   PetscInt  nsnap;              /* displacement snapshots, written as a temporal XDMF series */
   PetscReal *snapTime;
+  PetscBool snapStates;         /* the series also holds the contact state at each snapshot */
 } BoltOutput;
 
 PetscErrorCode BoltOutputOpen(BoltMesh *, const char[], const char[], BoltOutput *);
@@ -708,6 +717,8 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *, BoltMesh *, Vec, const char[]
 PetscErrorCode BoltOutputClose(BoltOutput *, BoltMesh *);
 PetscErrorCode BoltOutputSeries(BoltOutput *, const char[], const char[], PetscInt, const PetscReal[]);
 PetscErrorCode BoltOutputSnapshots(BoltOutput *, BoltMesh *, PetscInt, Vec[], const PetscReal[]);
+PetscErrorCode BoltOutputContactState(BoltOutput *, BoltMesh *, Vec, const char[]);
+PetscErrorCode BoltOutputSnapshotStates(BoltOutput *, BoltMesh *, BoltContactSet *, PetscInt, const unsigned char[]);
 
 /* JSON summary: a flat writer for the keys the README documents. */
 typedef struct {

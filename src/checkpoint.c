@@ -108,6 +108,15 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
     k += BOLT_CONTACT_PACK;
   }
   PetscCall(BoltHDF5WriteValues(v, comm, "contact_state", BOLT_CKPT_CONTACT * ne, 1, buf, PETSC_FALSE));
+  if (nm->nsnap) { /* the contact state at each snapshot so far, per element: nsnap x 4 codes */
+    PetscScalar *cs;
+    PetscCall(PetscMalloc1(4 * nm->nsnap * ne + 1, &cs));
+    for (PetscInt e = 0; e < ne; e++)
+      for (PetscInt i = 0; i < nm->nsnap; i++)
+        for (PetscInt q = 0; q < 4; q++) cs[(e * nm->nsnap + i) * 4 + q] = nm->snapCodes[4 * ne * i + 4 * e + q];
+    PetscCall(BoltHDF5WriteValues(v, comm, "snapshot_contact_state", 4 * nm->nsnap * ne, 1, cs, PETSC_FALSE));
+    PetscCall(PetscFree(cs));
+  }
   {
     BoltDual *d                     = nm->dual;
     PetscReal g[BOLT_CKPT_NGLOBALS] = {(PetscReal)nm->step, (PetscReal)nm->nsnap, (PetscReal)d->factorizations, (PetscReal)d->solves, (PetscReal)d->outerTotal, (PetscReal)d->innerTotal, (PetscReal)d->outerMax, (PetscReal)d->innerMax, (PetscReal)d->cycles, (PetscReal)d->failures, d->tContactStiffness, d->tDisplacements, d->tContactForces, nm->tOnline, (PetscReal)d->updates};
@@ -215,6 +224,21 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
       BoltContactStateUnpack(op->state, e, s);
     }
     PetscCall(PetscFree(x));
+    if (nsnap) {
+      PetscBool has;
+      PetscCall(PetscViewerHDF5HasDataset(v, "snapshot_contact_state", &has));
+      PetscCheck(has, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s holds snapshots but not their contact states (an older boltrom wrote it): run again from the start", file);
+      PetscCall(BoltReadAll(v, comm, "snapshot_contact_state", &n, &x));
+      PetscCheck(n == 4 * nsnap * ix.n, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (snapshot contact states of %" PetscInt_FMT " values for %" PetscInt_FMT " elements)", file, n, ix.n);
+      for (PetscInt e = 0; e < c->nelem; e++) {
+        PetscInt row;
+        PetscCall(BoltKeyIndexFind(&ix, c->elem[e].key, &row));
+        if (row < 0) continue; /* counted as missing above */
+        for (PetscInt i = 0; i < nsnap; i++)
+          for (PetscInt q = 0; q < 4; q++) nm->snapCodes[4 * c->nelem * i + 4 * e + q] = (unsigned char)x[(row * nsnap + i) * 4 + q];
+      }
+      PetscCall(PetscFree(x));
+    }
     PetscCall(BoltKeyIndexDestroy(&ix));
     BoltContactStateChanged(op->state); /* before stateLoad: the ROM brings K_cr up to date there */
   }

@@ -595,6 +595,32 @@ PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[
   PetscFunctionReturn(0);
 }
 
+/* The contact state at the nodes, for the output: in F (global layout, 3 per node) the weights
+   sum N_a of the node's open, sticking and slipping points (x, y and z: one per point with nodal
+   quadrature), on both sides of each pair. codes: each local point's (BoltContactStatePointCodes). */
+PetscErrorCode BoltContactSetNodalStates(BoltContactSet *c, const unsigned char codes[], Vec F)
+{
+  PetscScalar *f;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(c->fc));
+  PetscCall(VecGetArray(c->fc, &f));
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
+    const PetscReal *N   = &c->gpN[4 * gp];
+    for (PetscInt a = 0; a < 4; a++) {
+      const PetscInt ia = loc[3 * a + codes[gp]], ib = loc[12 + 3 * a + codes[gp]];
+      if (ia >= 0) f[ia] += N[a];
+      if (ib >= 0) f[ib] += N[a];
+    }
+  }
+  PetscCall(VecRestoreArray(c->fc, &f));
+  PetscCall(VecZeroEntries(F));
+  PetscCall(VecScatterBegin(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
 /* The nodal forces sum_q w N_a lambda_q of element e's Gauss-point tractions on its side-b nodes
    (3 per node, 12); side a takes their opposite. */
 void BoltContactElementForces(BoltContactSet *c, PetscInt e, const PetscReal lambda[], PetscReal fb[12])

@@ -826,6 +826,12 @@ PetscErrorCode BoltContactStateNodalForces(BoltContactState *s, Vec F)
   PetscFunctionReturn(0);
 }
 
+/* Each local point's state for the output: BOLT_POINT_OPEN, _STICK or _SLIP. */
+void BoltContactStatePointCodes(BoltContactState *s, unsigned char codes[])
+{
+  for (PetscInt gp = 0; gp < 4 * s->set->nelem; gp++) codes[gp] = !s->active[gp] ? BOLT_POINT_OPEN : s->released[gp] ? BOLT_POINT_SLIP : BOLT_POINT_STICK;
+}
+
 /* Min and max normal traction over active points, and the largest tangential traction. */
 PetscErrorCode BoltContactStateTractionStats(BoltContactState *s, PetscReal *tnMin, PetscReal *tnMax, PetscReal *ttMax)
 {

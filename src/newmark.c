@@ -89,6 +89,7 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
     PetscInt n = nm->nsteps / nm->snapshotEvery + 1;
     PetscCall(PetscCalloc1(n, &nm->snapTime));
     PetscCall(VecDuplicateVecs(nm->q, n, &nm->snap));
+    PetscCall(PetscCalloc1(n * 4 * op->contact->nelem + 1, &nm->snapCodes));
   }
   PetscCall(BoltDualSetUp(nm->dual));
   PetscFunctionReturn(0);
@@ -221,11 +222,17 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscCall(op->ops.probe(op, nm->q, &nm->probeValue[0]));
   if (nm->snapshotEvery > 0) {
     PetscCall(VecCopy(nm->q, nm->snap[0]));
+    BoltContactStatePointCodes(op->state, nm->snapCodes);
     nm->snapTime[0] = 0;
     nm->nsnap       = 1;
   }
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0], &ek, &es));
   PetscCall(BoltNewmarkLedger(nm, 0, 0, 0, ek, es));
+  if (op->state->law.friction) { /* the pairs the preload left slipping */
+    PetscInt nslip;
+    PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
+    nm->slipping[0] = (PetscReal)nslip;
+  }
   if (nm->restart) PetscCall(BoltNewmarkCheckpointRead(nm)); /* state, contact state and histories */
   step0 = nm->step;
   for (PetscInt n = step0 + 1; n <= nm->nsteps; n++) {
@@ -263,6 +270,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     nm->probeTime[n] = t;
     if (nm->snapshotEvery > 0 && n % nm->snapshotEvery == 0) {
       PetscCall(VecCopy(nm->q, nm->snap[nm->nsnap]));
+      BoltContactStatePointCodes(op->state, &nm->snapCodes[4 * op->contact->nelem * nm->nsnap]);
       nm->snapTime[nm->nsnap++] = t;
     }
     PetscCall(op->ops.probe(op, nm->q, &nm->probeValue[n]));
@@ -331,6 +339,7 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   PetscCall(VecDestroy(&nm->dq));
   if (nm->snap) PetscCall(VecDestroyVecs(nm->nsteps / nm->snapshotEvery + 1, &nm->snap));
   PetscCall(PetscFree(nm->snapTime));
+  PetscCall(PetscFree(nm->snapCodes));
   PetscCall(PetscFree(*nmp));
   PetscFunctionReturn(0);
 }

@@ -260,10 +260,29 @@ PetscErrorCode BoltOutputOpen(BoltMesh *m, const char dir[], const char name[], 
   PetscFunctionReturn(0);
 }
 
-/* A displacement-like field (free DOFs of the global system) as an (N, 3) vertex field,
-   clamped nodes at zero. */
-PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const char name[])
+/* A node's contact state from the weights of its open, sticking and slipping points: 0 where it
+   has none, else 1 + the state of most of them (1 open, 2 stick, 3 slip; on a tie open, then
+   slip: a node at the edge of a zone shows the zone). */
+static PetscScalar BoltNodeContactState(const PetscReal wk[3])
 {
+  const PetscInt tieOrder[3] = {BOLT_POINT_OPEN, BOLT_POINT_SLIP, BOLT_POINT_STICK};
+  PetscReal      best = 0, tol = 1e-12 * (wk[0] + wk[1] + wk[2]);
+  PetscScalar    code = 0;
+
+  for (PetscInt j = 0; j < 3; j++)
+    if (wk[tieOrder[j]] > best + tol) {
+      best = wk[tieOrder[j]];
+      code = tieOrder[j] + 1;
+    }
+  return code;
+}
+
+/* A vector of the global layout (3 DOFs per node, clamped ones absent) as a vertex field: (N, 3),
+   clamped DOFs at zero, or with state (N), each node's contact state from its three values, the
+   weights of BoltContactSetNodalStates. */
+static PetscErrorCode BoltOutputVertexValues(BoltOutput *out, BoltMesh *m, Vec u, const char name[], PetscBool state)
+{
+  const PetscInt     bs = state ? 1 : 3;
   IS                 vnumIS;
   const PetscInt    *vnum;
   PetscInt           nown = 0, rstart;
@@ -277,8 +296,8 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const 
   PetscCall(ISGetIndices(vnumIS, &vnum));
   for (PetscInt v = m->vStart; v < m->vEnd; v++)
     if (vnum[v - m->vStart] >= 0) nown++;
-  PetscCall(VecCreateMPI(m->comm, 3 * nown, 3 * m->nverticesGlobal, &w));
-  PetscCall(VecSetBlockSize(w, 3));
+  PetscCall(VecCreateMPI(m->comm, bs * nown, bs * m->nverticesGlobal, &w));
+  PetscCall(VecSetBlockSize(w, bs));
   PetscCall(PetscObjectSetName((PetscObject)w, name));
   PetscCall(VecGetOwnershipRange(u, &rstart, NULL));
   PetscCall(VecGetArrayRead(u, &a));
@@ -291,7 +310,10 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const 
       rows[d] = 3 * g + d;
       val[d]  = idx[d] >= 0 ? a[idx[d] - rstart] : 0.0;
     }
-    PetscCall(VecSetValues(w, 3, rows, val, INSERT_VALUES));
+    if (state) {
+      const PetscReal wk[3] = {PetscRealPart(val[0]), PetscRealPart(val[1]), PetscRealPart(val[2])};
+      PetscCall(VecSetValue(w, g, BoltNodeContactState(wk), INSERT_VALUES));
+    } else PetscCall(VecSetValues(w, 3, rows, val, INSERT_VALUES));
   }
   PetscCall(VecRestoreArrayRead(u, &a));
   PetscCall(ISRestoreIndices(vnumIS, &vnum));
@@ -302,9 +324,27 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const 
   PetscCall(PetscViewerHDF5PopGroup(out->viewer));
   PetscCall(VecDestroy(&w));
   PetscCall(PetscStrncpy(out->field[out->nfields], name, BOLTROM_NAME_LEN));
-  out->fieldComponents[out->nfields] = 3;
+  out->fieldComponents[out->nfields] = bs;
   out->fieldOnCells[out->nfields++]  = PETSC_FALSE;
   PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* A displacement-like field (free DOFs of the global system) as an (N, 3) vertex field,
+   clamped nodes at zero. */
+PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const char name[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltOutputVertexValues(out, m, u, name, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* The contact state at the nodes as a scalar vertex field (BoltNodeContactState). W: the weights
+   of each node's open, sticking and slipping points (BoltContactSetNodalStates). */
+PetscErrorCode BoltOutputContactState(BoltOutput *out, BoltMesh *m, Vec W, const char name[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltOutputVertexValues(out, m, W, name, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
@@ -328,6 +368,27 @@ PetscErrorCode BoltOutputSeries(BoltOutput *out, const char group[], const char 
   PetscCall(VecView(w, out->viewer));
   PetscCall(PetscViewerHDF5PopGroup(out->viewer));
   PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
+/* The contact state at each snapshot (codes: per snapshot, each local point's), as vertex fields
+   contact_state_<i> that the temporal series shows beside the displacement. */
+PetscErrorCode BoltOutputSnapshotStates(BoltOutput *out, BoltMesh *m, BoltContactSet *c, PetscInt n, const unsigned char codes[])
+{
+  PetscInt nf = out->nfields;
+  Vec      W;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(c->fGlobal, &W));
+  for (PetscInt i = 0; i < n; i++) {
+    char name[32];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "contact_state_%06" PetscInt_FMT, i));
+    PetscCall(BoltContactSetNodalStates(c, &codes[4 * c->nelem * i], W));
+    PetscCall(BoltOutputContactState(out, m, W, name));
+    out->nfields = nf;
+  }
+  PetscCall(VecDestroy(&W));
+  out->snapStates = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -400,7 +461,9 @@ PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
       for (PetscInt i = 0; i < out->nsnap; i++) {
         fprintf(fp, "  <Grid Name=\"step\" GridType=\"Uniform\">\n   <Time Value=\"%.10g\"/>\n", (double)out->snapTime[i]);
         BoltWriteXdmfMesh(fp, out, m);
-        fprintf(fp, "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/snapshot_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n  </Grid>\n", m->nverticesGlobal, out->name, i);
+        fprintf(fp, "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/snapshot_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", m->nverticesGlobal, out->name, i);
+        if (out->snapStates) fprintf(fp, "   <Attribute Name=\"contact_state\" AttributeType=\"Scalar\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/contact_state_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", m->nverticesGlobal, out->name, i);
+        fprintf(fp, "  </Grid>\n");
       }
       fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
       PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", xtmp);

@@ -255,6 +255,25 @@ PetscErrorCode BoltSummaryWrite(MPI_Comm comm, const char path[], const BoltSumm
   PetscFunctionReturn(0);
 }
 
+/* A model's contact state at the end of its run, at the nodes (BoltOutputContactState). */
+static PetscErrorCode BoltWriteFinalContactState(BoltOutput *h5, BoltMesh *mesh, BoltContactState *state, const char name[])
+{
+  BoltContactSet *c = state->set;
+  unsigned char  *codes;
+  Vec             W;
+
+  PetscFunctionBeginUser;
+  if (!c->ngpGlobal) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(4 * c->nelem + 1, &codes));
+  PetscCall(VecDuplicate(c->fGlobal, &W));
+  BoltContactStatePointCodes(state, codes);
+  PetscCall(BoltContactSetNodalStates(c, codes, W));
+  PetscCall(BoltOutputContactState(h5, mesh, W, name));
+  PetscCall(VecDestroy(&W));
+  PetscCall(PetscFree(codes));
+  PetscFunctionReturn(0);
+}
+
 /* The fields and histories of the run: <dir>/<name>.h5 and .xmf (ParaView). */
 PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], const char name[])
 {
@@ -274,6 +293,7 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
     PetscCall(VecDuplicate(fom->q, &fc));
     PetscCall(BoltContactStateNodalForces(fom->op->state, fc));
     PetscCall(BoltOutputVertexField(&h5, mesh, fc, "fom_final_contact_force"));
+    PetscCall(BoltWriteFinalContactState(&h5, mesh, fom->op->state, "fom_final_contact_state"));
     PetscCall(VecDestroy(&fc));
     PetscCall(BoltOutputSeries(&h5, "/fom", "time", fom->nsteps + 1, fom->probeTime));
     PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fom->nsteps + 1, fom->probeValue));
@@ -286,9 +306,13 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
       PetscCall(BoltOutputSeries(&h5, "/fom", "slipping", fom->nsteps + 1, fom->slipping));
       PetscCall(BoltOutputSeries(&h5, "/fom", "dissipated", fom->nsteps + 1, fom->dissipated));
     }
-    if (fom->nsnap) PetscCall(BoltOutputSnapshots(&h5, mesh, fom->nsnap, fom->snap, fom->snapTime));
+    if (fom->nsnap) {
+      PetscCall(BoltOutputSnapshots(&h5, mesh, fom->nsnap, fom->snap, fom->snapTime));
+      if (fom->op->contact->ngpGlobal) PetscCall(BoltOutputSnapshotStates(&h5, mesh, fom->op->contact, fom->nsnap, fom->snapCodes));
+    }
   }
   if (rom) {
+    PetscCall(BoltWriteFinalContactState(&h5, mesh, rom->op->state, "rom_final_contact_state"));
     PetscCall(BoltOutputSeries(&h5, "/rom", "time", rom->nsteps + 1, rom->probeTime));
     PetscCall(BoltOutputSeries(&h5, "/rom", "probe", rom->nsteps + 1, rom->probeValue));
     PetscCall(BoltOutputSeries(&h5, "/rom", "energy", rom->nsteps + 1, rom->energy));

@@ -107,8 +107,12 @@ def test_fom_converges_where_the_load_opens_the_joint(joint_small, tmp_path):
 
 
 def test_snapshot_series_for_paraview(joint_small, tmp_path):
+    """The series holds the displacement and the contact state at each snapshot; the last equals
+    the final fields. The state is 1 + the state of most of a node's contact points (1 open,
+    2 stick), 0 off the contact: every node of the five pairs has points, and the preloaded joint
+    under its load is open at its rim only."""
     import xml.etree.ElementTree as ET
-    mesh, _ = joint_small
+    mesh, info = joint_small
     run_summary(["-mesh", mesh] + FOM + ["-ts_dt", "1e-4", "-ts_end", "1e-3", "-snapshot_every", "5",
                  "-output_dir", tmp_path], tmp_path)
     root = ET.parse(tmp_path / "joint-series.xmf").getroot()
@@ -120,6 +124,12 @@ def test_snapshot_series_for_paraview(joint_small, tmp_path):
             assert f[path].shape == tuple(int(v) for v in item.get("Dimensions").split())
         last = f["/vertex_fields/snapshot_000002"][...]
         assert np.allclose(last, f["/vertex_fields/fom_final_displacement"][...])
+        state = f["/vertex_fields/fom_final_contact_state"][...].ravel()
+        assert np.array_equal(state, f["/vertex_fields/contact_state_000002"][...].ravel())
+    assert [a.get("Name") for a in root.iter("Attribute") if a.get("Name") != "part"] == ["displacement", "contact_state"] * 3
+    counts = np.bincount(state.astype(int), minlength=4)
+    assert counts[1:].sum() == info["contact_dofs"] // 3
+    assert counts[3] == 0 and 0 < counts[1] < 0.2 * counts[2], counts  # no slip without friction; a few open
 
 
 def test_converged_contact_does_not_depend_on_the_penalty(joint_small, tmp_path):
