@@ -717,7 +717,7 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *, BoltMesh *, Vec, const char[]
 PetscErrorCode BoltOutputClose(BoltOutput *, BoltMesh *);
 PetscErrorCode BoltOutputSeries(BoltOutput *, const char[], const char[], PetscInt, const PetscReal[]);
 PetscErrorCode BoltOutputSnapshots(BoltOutput *, BoltMesh *, PetscInt, Vec[], const PetscReal[]);
-PetscErrorCode BoltOutputContactState(BoltOutput *, BoltMesh *, Vec, const char[]);
+PetscErrorCode BoltOutputContactState(BoltOutput *, BoltMesh *, BoltContactSet *, const unsigned char[], const char[]);
 PetscErrorCode BoltOutputSnapshotStates(BoltOutput *, BoltMesh *, BoltContactSet *, PetscInt, const unsigned char[]);
 
 /* JSON summary: a flat writer for the keys the README documents. */

@@ -339,12 +339,17 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const 
   PetscFunctionReturn(0);
 }
 
-/* The contact state at the nodes as a scalar vertex field (BoltNodeContactState). W: the weights
-   of each node's open, sticking and slipping points (BoltContactSetNodalStates). */
-PetscErrorCode BoltOutputContactState(BoltOutput *out, BoltMesh *m, Vec W, const char name[])
+/* The contact state at the nodes as a scalar vertex field (BoltNodeContactState), from the codes
+   of the local points of contact set c (BoltContactStatePointCodes). */
+PetscErrorCode BoltOutputContactState(BoltOutput *out, BoltMesh *m, BoltContactSet *c, const unsigned char codes[], const char name[])
 {
+  Vec W;
+
   PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(c->fGlobal, &W));
+  PetscCall(BoltContactSetNodalStates(c, codes, W));
   PetscCall(BoltOutputVertexValues(out, m, W, name, PETSC_TRUE));
+  PetscCall(VecDestroy(&W));
   PetscFunctionReturn(0);
 }
 
@@ -376,18 +381,14 @@ PetscErrorCode BoltOutputSeries(BoltOutput *out, const char group[], const char 
 PetscErrorCode BoltOutputSnapshotStates(BoltOutput *out, BoltMesh *m, BoltContactSet *c, PetscInt n, const unsigned char codes[])
 {
   PetscInt nf = out->nfields;
-  Vec      W;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(c->fGlobal, &W));
   for (PetscInt i = 0; i < n; i++) {
     char name[32];
     PetscCall(PetscSNPrintf(name, sizeof(name), "contact_state_%06" PetscInt_FMT, i));
-    PetscCall(BoltContactSetNodalStates(c, &codes[4 * c->nelem * i], W));
-    PetscCall(BoltOutputContactState(out, m, W, name));
+    PetscCall(BoltOutputContactState(out, m, c, &codes[4 * c->nelem * i], name));
     out->nfields = nf;
   }
-  PetscCall(VecDestroy(&W));
   out->snapStates = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

@@ -260,16 +260,12 @@ static PetscErrorCode BoltWriteFinalContactState(BoltOutput *h5, BoltMesh *mesh,
 {
   BoltContactSet *c = state->set;
   unsigned char  *codes;
-  Vec             W;
 
   PetscFunctionBeginUser;
   if (!c->ngpGlobal) PetscFunctionReturn(0);
   PetscCall(PetscMalloc1(4 * c->nelem + 1, &codes));
-  PetscCall(VecDuplicate(c->fGlobal, &W));
   BoltContactStatePointCodes(state, codes);
-  PetscCall(BoltContactSetNodalStates(c, codes, W));
-  PetscCall(BoltOutputContactState(h5, mesh, W, name));
-  PetscCall(VecDestroy(&W));
+  PetscCall(BoltOutputContactState(h5, mesh, c, codes, name));
   PetscCall(PetscFree(codes));
   PetscFunctionReturn(0);
 }
