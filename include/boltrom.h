@@ -525,7 +525,7 @@ typedef struct {
 PetscErrorCode BoltExactSumBegin(BoltExactSum *, PetscInt, PetscReal, PetscInt);
 void           BoltExactSumAdd(BoltExactSum *, const PetscReal[]);
 void           BoltExactSumAddParts(BoltExactSum *, const PetscReal[], PetscReal[], PetscReal[]);
-void           BoltExactSumRemove(BoltExactSum *, const PetscReal[], const PetscReal[]);
+void           BoltExactSumReplaceParts(BoltExactSum *, const PetscReal[], PetscReal[], PetscReal[]);
 PetscErrorCode BoltExactSumEnd(BoltExactSum *, MPI_Comm, PetscReal[]);
 PetscErrorCode BoltExactSumDestroy(BoltExactSum *);
 
@@ -622,6 +622,10 @@ typedef struct {
   PetscReal      *npSlotF;       /* 3 per point of an owned pair: its nodal force, from its element's rank */
   PetscReal      *npF, *npFSum;  /* 3 per owned pair: F_p, and the F_p whose term fAcc holds */
   PetscSF         npSF;          /* leaves: felem of the local elements (and, alike, their points' gaps); roots: npSlotF */
+  /* every node pair's rows of D on every rank, so that the online K_cr and low-rank updates gather
+     a changed point's 3 x 3 block and its pair's index, not its 3n values of D */
+  PetscReal      *npRowsAll;     /* 3n per node pair (all ranks'), n x 3 column-major, in the pairs' order */
+  PetscInt       *npOfPoint;     /* 4 per local contact element: its node pair's index (-1: both nodes clamped) */
   /* under friction with the nodal quadrature (pairGaps) the owners make the gaps too, D_p q, and
      send them to the pairs' points: the rows of pairs with a point that may change first */
   PetscBool       pairGaps;

@@ -59,7 +59,7 @@ void BoltExactSumAdd(BoltExactSum *s, const PetscReal x_[])
 }
 
 /* As BoltExactSumAdd, keeping the parts x was split into (p1 on the first grid, p2 on the
-   second), so that BoltExactSumRemove can take the same term out again exactly. */
+   second), so that BoltExactSumReplaceParts can take the same term out again exactly. */
 void BoltExactSumAddParts(BoltExactSum *s, const PetscReal x_[], PetscReal p1_[], PetscReal p2_[])
 {
   const PetscReal s1 = s->sigma[0], s2 = s->sigma[1];
@@ -76,14 +76,22 @@ void BoltExactSumAddParts(BoltExactSum *s, const PetscReal x_[], PetscReal p1_[]
   }
 }
 
-/* acc -= a term's parts from BoltExactSumAddParts on the same grids: exact, as the sum held it. */
-void BoltExactSumRemove(BoltExactSum *s, const PetscReal p1[], const PetscReal p2[])
+/* A term added by BoltExactSumAddParts replaced by x: its old parts p1, p2 taken out and x's
+   added (and kept in p1, p2) in one pass. Every operation is exact on the grids, so the sums are
+   those of the current terms added afresh. */
+void BoltExactSumReplaceParts(BoltExactSum *s, const PetscReal x_[], PetscReal p1_[], PetscReal p2_[])
 {
-  PetscReal *restrict a1 = s->acc, *restrict a2 = s->acc + s->n;
+  const PetscReal s1 = s->sigma[0], s2 = s->sigma[1];
+  PetscReal *restrict       a1 = s->acc, *restrict a2 = s->acc + s->n, *restrict p1 = p1_, *restrict p2 = p2_;
+  const PetscReal *restrict x = x_;
 
   for (PetscInt j = 0; j < s->n; j++) {
-    a1[j] -= p1[j];
-    a2[j] -= p2[j];
+    PetscReal q = 0, r = 0;
+    if (s1 != 0) BoltExactSumSplit(s1, s2, x[j], &q, &r);
+    a1[j] = (a1[j] - p1[j]) + q;
+    a2[j] = (a2[j] - p2[j]) + r;
+    p1[j] = q;
+    p2[j] = r;
   }
 }
 

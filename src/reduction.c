@@ -978,7 +978,10 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
   PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
-  PetscCall(PetscFree3(rom->kcrSend, rom->kcrRecv, rom->kcrDT));
+  /* grown one by one (BoltGrowReal), so freed one by one: PetscFree3 frees a coalesced block */
+  PetscCall(PetscFree(rom->kcrSend));
+  PetscCall(PetscFree(rom->kcrRecv));
+  PetscCall(PetscFree(rom->kcrDT));
   PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
   PetscCall(BoltExactSumDestroy(&rom->sum));
@@ -987,6 +990,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(BoltROMUpdateDestroy(&rom->update));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));
   PetscCall(PetscFree6(rom->npSlotStart, rom->npD, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
+  PetscCall(PetscFree2(rom->npRowsAll, rom->npOfPoint));
   PetscCall(PetscSFDestroy(&rom->npSF));
   PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));
   PetscCall(PetscFree(*romp));

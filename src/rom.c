@@ -152,6 +152,7 @@ static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange
   PetscCallMPI(MPI_Comm_rank(rom->comm, &rank));
   PetscCall(PetscFree6(rom->npSlotStart, rom->npD, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
   PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));
+  PetscCall(PetscFree2(rom->npRowsAll, rom->npOfPoint));
   PetscCall(PetscSFDestroy(&rom->npSF));
   PetscCall(PetscMalloc1(24 * c->nelem + 1, &recs));
   for (PetscInt e = 0; e < c->nelem; e++)
@@ -191,6 +192,8 @@ static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange
     if (k % size == rank && live[k]) rom->npLive++;
   }
   PetscCall(PetscMalloc6(rom->npOwned + 1, &rom->npSlotStart, 3 * n * rom->npOwned + 1, &rom->npD, rom->npOwned + 1, &rom->npDMax, 3 * nslots + 1, &rom->npSlotF, 3 * rom->npOwned + 1, &rom->npF, 3 * rom->npOwned + 1, &rom->npFSum));
+  PetscCall(PetscMalloc2(3 * n * npair + 1, &rom->npRowsAll, 4 * c->nelem + 1, &rom->npOfPoint));
+  for (PetscInt i = 0; i < 4 * c->nelem; i++) rom->npOfPoint[i] = -1;
   PetscCall(PetscMalloc1(recLen * nmine + 1, &send));
   for (PetscMPIInt r = 0; r < size; r++) count[r] = 0;
   for (PetscInt k = 0; k < npair; k++) {
@@ -200,6 +203,7 @@ static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange
     for (PetscInt t = 0; t < m; t++) { /* the pair's points are in name order from i0 */
       const PetscInt *r = &all[6 * rec[i0 + t].pos];
       if (r[3] != rank) continue;
+      rom->npOfPoint[4 * (r[4] / 12) + (r[4] % 12) / 3] = k;
       for (PetscInt l = 0; l < 3; l++, nleaves++) {
         ilocal[nleaves]        = r[4] + l;
         iremote[nleaves].rank  = owner;
@@ -221,6 +225,8 @@ static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange
     const PetscReal *x = &recv[recLen * i];
     const PetscInt   k = (PetscInt)x[0];
     PetscReal        mx = 0;
+    for (PetscInt j = 0; j < n; j++)
+      for (PetscInt l = 0; l < 3; l++) rom->npRowsAll[3 * n * k + n * l + j] = x[1 + 3 * j + l];
     if (k % size != rank) continue;
     PetscCall(PetscArraycpy(&rom->npD[3 * n * (k / size)], x + 1, 3 * n));
     for (PetscInt j = 0; j < 3 * n; j++) mx = PetscMax(mx, PetscAbsReal(x[1 + j]));
@@ -273,9 +279,9 @@ static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal 
     const PetscReal *f    = &rom->npF[3 * k];
     PetscReal       *fsum = &rom->npFSum[3 * k], *p = &rom->fParts[2 * n * k];
     if (!fresh && f[0] == fsum[0] && f[1] == fsum[1] && f[2] == fsum[2]) continue;
-    if (!fresh) BoltExactSumRemove(&rom->sum, p, p + n);
     ROMPairForceTerm(rom, k, g);
-    BoltExactSumAddParts(&rom->sum, g, p, p + n);
+    if (fresh) BoltExactSumAddParts(&rom->sum, g, p, p + n);
+    else BoltExactSumReplaceParts(&rom->sum, g, p, p + n);
     PetscCall(PetscArraycpy(fsum, f, 3));
   }
   PetscCall(PetscArraycpy(rom->fAcc, rom->sum.acc, 2 * n));
@@ -401,13 +407,14 @@ static PetscErrorCode ROMAddUpperProduct(BoltROM *rom, PetscInt npair, const Pet
    quadrature an element's M_e is block diagonal in its four points, and the points of the (up to
    four) elements at a node pair share its rows D_p of D = V_b - V_a: one term per node pair, and
    all of them in one BLAS-3 product, instead of an n x n exact sum per element. Every rank
-   gathers the changed points (name, block, rows), sums each node pair's blocks in the order of
-   the points' names and takes the node pairs in the order of their first point's name, so all
-   ranks hold the same factors Tm and Dm, whose product they share (ROMAddUpperProduct). */
+   gathers the changed points (pair, name, block; the pairs' rows are on every rank), sums each
+   node pair's blocks in the order of the points' names and takes the node pairs in the order of
+   their first changed point's name, so all ranks hold the same factors Tm and Dm, whose product
+   they share (ROMAddUpperProduct). */
 static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty, const PetscInt dirty[], const PetscReal delta[])
 {
   BoltContactSet *c = rom->contact;
-  const PetscInt  n = rom->n, recLen = 3 + 9 + 3 * n;
+  const PetscInt  n = rom->n, recLen = 2 + 9;
   PetscInt        nsend = 0, total = 0, nrec, npair = 0;
   PetscReal      *send, *recv, *Dm, *Tm;
   ROMPointRecord *rec, *first;
@@ -417,24 +424,21 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
   send = rom->kcrSend;
   for (PetscInt i = 0; i < ndirty; i++) {
     const PetscInt   e = dirty[i];
-    const PetscReal *d = &delta[144 * i], *D = &rom->De[12 * n * e];
+    const PetscReal *d = &delta[144 * i];
     for (PetscInt a = 0; a < 4; a++) {
       PetscReal *r = &send[nsend];
       PetscBool  changed = PETSC_FALSE;
-      if (c->elem[e].dofs[3 * a] < 0 && c->elem[e].dofs[12 + 3 * a] < 0) continue; /* both nodes clamped */
+      if (rom->npOfPoint[4 * e + a] < 0) continue; /* both nodes clamped */
       for (PetscInt p = 0; p < 12; p++) /* off the point's own block the nodal M_e is zero */
         for (PetscInt q = 0; q < 12; q++) {
           if (p / 3 == a && q / 3 == a) changed = (PetscBool)(changed || d[12 * p + q] != 0);
           else if ((p / 3 == a || q / 3 == a) && d[12 * p + q] != 0) SETERRQ(rom->comm, PETSC_ERR_PLIB, "nodal contact stiffness couples two points of an element");
         }
       if (!changed) continue;
-      r[0] = (PetscReal)c->elem[e].dofs[12 + 3 * a];
-      r[1] = (PetscReal)c->elem[e].dofs[3 * a];
-      r[2] = (PetscReal)(4 * c->elem[e].key + a);
+      r[0] = (PetscReal)rom->npOfPoint[4 * e + a];
+      r[1] = (PetscReal)(4 * c->elem[e].key + a);
       for (PetscInt p = 0; p < 3; p++)
-        for (PetscInt q = 0; q < 3; q++) r[3 + 3 * p + q] = d[12 * (3 * a + p) + 3 * a + q];
-      for (PetscInt p = 0; p < 3; p++)
-        for (PetscInt j = 0; j < n; j++) r[12 + n * p + j] = D[3 * a + p + 12 * j];
+        for (PetscInt q = 0; q < 3; q++) r[2 + 3 * p + q] = d[12 * (3 * a + p) + 3 * a + q];
       nsend += recLen;
     }
   }
@@ -444,9 +448,9 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
   PetscCall(PetscMalloc2(nrec + 1, &rec, nrec + 1, &first));
   for (PetscInt i = 0; i < nrec; i++) {
     const PetscReal *r = &recv[recLen * i];
-    rec[i].dofB = (PetscInt)r[0];
-    rec[i].dofA = (PetscInt)r[1];
-    rec[i].name = (PetscInt)r[2];
+    rec[i].dofB = (PetscInt)r[0]; /* the pair's index stands for its two nodes */
+    rec[i].dofA = 0;
+    rec[i].name = (PetscInt)r[1];
     rec[i].pos  = recLen * i;
   }
   npair = ROMNodePairs(nrec, rec, first);
@@ -455,14 +459,14 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
   Dm = rom->kcrDT;
   Tm = Dm + 3 * n * npair + 1;
   for (PetscInt k = 0; k < npair; k++) {
-    PetscReal       dB[9];
-    const PetscReal *r0 = &recv[rec[first[k].pos].pos];
-    PetscCall(PetscArraycpy(dB, r0 + 3, 9));
-    for (PetscInt i = first[k].pos + 1; i < nrec && rec[i].dofB == first[k].dofB && rec[i].dofA == first[k].dofA; i++)
-      for (PetscInt l = 0; l < 9; l++) dB[l] += recv[rec[i].pos + 3 + l];
-    PetscCall(PetscArraycpy(&Dm[3 * n * k], r0 + 12, 3 * n));
+    PetscReal        dB[9];
+    const PetscReal *r0 = &recv[rec[first[k].pos].pos], *D = &rom->npRowsAll[3 * n * first[k].dofB];
+    PetscCall(PetscArraycpy(dB, r0 + 2, 9));
+    for (PetscInt i = first[k].pos + 1; i < nrec && rec[i].dofB == first[k].dofB; i++)
+      for (PetscInt l = 0; l < 9; l++) dB[l] += recv[rec[i].pos + 2 + l];
+    PetscCall(PetscArraycpy(&Dm[3 * n * k], D, 3 * n));
     for (PetscInt q = 0; q < 3; q++)
-      for (PetscInt j = 0; j < n; j++) Tm[3 * n * k + n * q + j] = r0[12 + j] * dB[q] + r0[12 + n + j] * dB[3 + q] + r0[12 + 2 * n + j] * dB[6 + q];
+      for (PetscInt j = 0; j < n; j++) Tm[3 * n * k + n * q + j] = D[j] * dB[q] + D[n + j] * dB[3 + q] + D[2 * n + j] * dB[6 + q];
   }
   PetscCall(PetscFree2(rec, first));
   if (npair > 0) PetscCall(ROMAddUpperProduct(rom, npair, Tm, Dm));

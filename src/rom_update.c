@@ -165,42 +165,39 @@ static PetscErrorCode ROMSolveNewSlots(BoltROM *rom, ROMReference *ref, PetscInt
 }
 
 /* The correction of reference r for the current state, if it fits: the slots' records gathered
-   in the order of their names, new slots added to its pool, I + S G factorised. */
+   in the order of their names, new slots added to its pool (their columns of U from the node
+   pairs' rows every rank holds), I + S G factorised. */
 static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *done)
 {
   BoltROMUpdate  *u   = rom->update;
   ROMReference   *ref = &u->ref[r];
   BoltContactSet *c   = rom->contact;
-  const PetscInt  n = rom->n, recLen = 2 + 36, LD = 3 * u->alloc;
+  const PetscInt  n = rom->n, recLen = 3 + 36, LD = 3 * u->alloc;
   PetscInt        nsend = 0, nrec = 0, total = 0, nnew = 0, m, mine;
 
   PetscFunctionBeginUser;
   *done = PETSC_FALSE;
-  /* a record per differing slot: name, pool slot (-1: new), its three rows of the difference,
-     and if new its columns of U */
+  /* a record per differing slot: name, pool slot (-1: new), node pair (-1: both nodes clamped),
+     its three rows of the difference */
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++)
-      if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) nsend += recLen + (ref->slotOf[4 * e + a] < 0 ? 3 * n : 0);
+      if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) nsend += recLen;
   PetscCall(BoltGrowReal(&u->send, &u->sendAlloc, nsend + 1));
   nsend = 0;
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
-      const PetscReal *cur = &u->Kcur[144 * e], *ke = &ref->Ke[144 * e], *D = &rom->De[12 * n * e];
+      const PetscReal *cur = &u->Kcur[144 * e], *ke = &ref->Ke[144 * e];
       PetscReal       *r0  = &u->send[nsend];
       if (!ROMSlotDiffers(cur, ke, a)) continue;
       r0[0] = (PetscReal)(4 * c->elem[e].key + a);
       r0[1] = (PetscReal)ref->slotOf[4 * e + a];
+      r0[2] = (PetscReal)rom->npOfPoint[4 * e + a];
       for (PetscInt q = 0; q < 3; q++)
-        for (PetscInt b = 0; b < 12; b++) r0[2 + 12 * q + b] = cur[12 * (3 * a + q) + b] - ke[12 * (3 * a + q) + b];
+        for (PetscInt b = 0; b < 12; b++) r0[3 + 12 * q + b] = cur[12 * (3 * a + q) + b] - ke[12 * (3 * a + q) + b];
       nsend += recLen;
-      if (ref->slotOf[4 * e + a] < 0) {
-        for (PetscInt q = 0; q < 3; q++)
-          for (PetscInt j = 0; j < n; j++) u->send[nsend + n * q + j] = D[3 * a + q + 12 * j];
-        nsend += 3 * n;
-      }
     }
   PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, u->send, nsend, &u->recv, &u->recvAlloc, &total, &mine));
-  for (PetscInt pos = 0; pos < total; nrec++) pos += recLen + (u->recv[pos + 1] < 0 ? 3 * n : 0);
+  nrec = total / recLen;
   if (nrec > u->recAlloc) {
     u->recAlloc = PetscMax(nrec, 2 * u->recAlloc);
     PetscCall(PetscFree2(u->name, u->perm));
@@ -210,7 +207,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
     u->name[i] = (PetscInt)u->recv[pos];
     u->perm[i] = pos;
     if (u->recv[pos + 1] < 0) nnew++;
-    pos += recLen + (u->recv[pos + 1] < 0 ? 3 * n : 0);
+    pos += recLen;
   }
   PetscCall(PetscSortIntWithArray(nrec, u->name, u->perm)); /* names in order, perm: where their records are */
   if (3 * nrec > u->maxRank || ref->nslot + nnew > u->alloc) PetscFunctionReturn(0);
@@ -222,9 +219,11 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
     PetscReal      one = 1, zero = 0;
     u->largestBatch = PetscMax(u->largestBatch, nnew);
     for (PetscInt i = 0; i < nrec; i++) {
-      PetscReal *r0 = &u->recv[u->perm[i]];
+      PetscReal     *r0 = &u->recv[u->perm[i]];
+      const PetscInt k  = (PetscInt)r0[2];
       if (r0[1] >= 0) continue;
-      PetscCall(PetscArraycpy(&ref->U[3 * n * ref->nslot], r0 + recLen, 3 * n));
+      if (k >= 0) PetscCall(PetscArraycpy(&ref->U[3 * n * ref->nslot], &rom->npRowsAll[3 * n * k], 3 * n));
+      else PetscCall(PetscArrayzero(&ref->U[3 * n * ref->nslot], 3 * n));
       r0[1] = (PetscReal)ref->nslot++;
     }
     PetscCall(ROMSolveNewSlots(rom, ref, first, nnew));
@@ -240,10 +239,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   for (PetscInt e = 0, pos = mine; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
       if (!ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) continue;
-      if (ref->slotOf[4 * e + a] < 0) {
-        ref->slotOf[4 * e + a] = (PetscInt)u->recv[pos + 1];
-        pos += 3 * n;
-      }
+      if (ref->slotOf[4 * e + a] < 0) ref->slotOf[4 * e + a] = (PetscInt)u->recv[pos + 1];
       pos += recLen;
     }
   /* the correction: its slots, S, U and Z side by side, and I + S G factorised */
@@ -252,7 +248,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
     const PetscReal *r0 = &u->recv[u->perm[i]];
     u->act[i]           = (PetscInt)r0[1];
     u->node[i]          = u->name[i] % 4;
-    PetscCall(PetscArraycpy(&u->S[36 * i], r0 + 2, 36));
+    PetscCall(PetscArraycpy(&u->S[36 * i], r0 + 3, 36));
     u->first[i] = (i > 0 && u->name[i - 1] / 4 == u->name[i] / 4) ? u->first[i - 1] : i;
   }
   for (PetscInt i = nrec - 1; i >= 0; i--) u->last[i] = (i < nrec - 1 && u->name[i + 1] / 4 == u->name[i] / 4) ? u->last[i + 1] : i;

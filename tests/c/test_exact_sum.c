@@ -62,6 +62,34 @@ int main(int argc, char **argv)
     if (!(worst <= 1)) nfail++;
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "INFO plain_double_sum_error_over_bound %.6e\n", (double)plainWorst));
   }
+  /* terms replaced in place (BoltExactSumAddParts, then BoltExactSumReplaceParts of every third
+     term by the term of i + 1, on its rank): the same bits as summing the new terms afresh */
+  {
+    PetscReal *parts, fresh[5], replaced[5], diff = 0;
+    PetscCall(PetscMalloc1(2 * n * nterms, &parts));
+    PetscCall(BoltExactSumBegin(&sum, n, bound, nterms));
+    for (PetscInt i = 0; i < nterms; i++) {
+      if (i % size != rank) continue;
+      for (PetscInt j = 0; j < n; j++) x[j] = Term(i, j);
+      BoltExactSumAddParts(&sum, x, &parts[2 * n * i], &parts[2 * n * i + n]);
+    }
+    for (PetscInt i = nterms - 1; i >= 0; i--) {
+      if (i % size != rank || i % 3 || i + 1 == nterms) continue;
+      for (PetscInt j = 0; j < n; j++) x[j] = Term(i + 1, j);
+      BoltExactSumReplaceParts(&sum, x, &parts[2 * n * i], &parts[2 * n * i + n]);
+    }
+    PetscCall(BoltExactSumEnd(&sum, PETSC_COMM_WORLD, replaced));
+    PetscCall(BoltExactSumBegin(&sum, n, bound, nterms));
+    for (PetscInt i = 0; i < nterms; i++) {
+      for (PetscInt j = 0; j < n; j++) x[j] = Term(i % 3 || i + 1 == nterms ? i : i + 1, j);
+      BoltExactSumAdd(&sum, x);
+    }
+    PetscCall(BoltExactSumEnd(&sum, PETSC_COMM_SELF, fresh));
+    for (PetscInt j = 0; j < n; j++) diff = PetscMax(diff, PetscAbsReal(replaced[j] - fresh[j]) / bound);
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s replaced_terms_same_bits_as_fresh %.6e\n", diff == 0 && replaced[0] != all[0] ? "PASS" : "FAIL", (double)diff));
+    if (!(diff == 0 && replaced[0] != all[0])) nfail++;
+    PetscCall(PetscFree(parts));
+  }
   /* a zero bound (no terms) gives zero sums */
   PetscCall(BoltExactSumBegin(&sum, n, 0.0, nterms));
   PetscCall(BoltExactSumEnd(&sum, PETSC_COMM_WORLD, split));
