@@ -617,13 +617,14 @@ typedef struct {
      quarter of the four element terms it replaces, and the ranks share the pairs evenly. */
   PetscInt        npOwned, npGlobal; /* node pairs this rank owns, and all of them */
   PetscInt       *npSlotStart;   /* npOwned + 1: the owned pairs' points in npSlotF */
-  PetscReal      *npD;           /* 3n per owned pair: D_p' as n rows of 3 */
+  PetscInt       *npGlobalOf;    /* per owned pair: its index among all pairs (its rows in npRowsAll) */
   PetscReal      *npDMax;        /* per owned pair: max |D_p| */
   PetscReal      *npSlotF;       /* 3 per point of an owned pair: its nodal force, from its element's rank */
   PetscReal      *npF, *npFSum;  /* 3 per owned pair: F_p, and the F_p whose term fAcc holds */
   PetscSF         npSF;          /* leaves: felem of the local elements (and, alike, their points' gaps); roots: npSlotF */
-  /* every node pair's rows of D on every rank, so that the online K_cr and low-rank updates gather
-     a changed point's 3 x 3 block and its pair's index, not its 3n values of D */
+  /* every node pair's rows of D on every rank: the owners' force terms read their pairs' rows
+     there, and the online K_cr and low-rank updates gather a changed point's 3 x 3 block and its
+     pair's index, not its 3n values of D */
   PetscReal      *npRowsAll;     /* 3n per node pair (all ranks'), n x 3 column-major, in the pairs' order */
   PetscInt       *npOfPoint;     /* 4 per local contact element: its node pair's index (-1: both nodes clamped) */
   /* under friction with the nodal quadrature (pairGaps) the owners make the gaps too, D_p q, and
@@ -631,7 +632,7 @@ typedef struct {
   PetscBool       pairGaps;
   PetscInt        npLive;        /* owned pairs with a point that may change */
   PetscInt       *npRowOf;       /* per owned pair: its first row in npRows */
-  PetscScalar    *npRows;        /* 3 npOwned x n, column-major: npD's rows again, as one block for the gaps' product (npD keeps a pair's rows together for its force term) */
+  PetscScalar    *npRows;        /* 3 npOwned x n, column-major: the owned pairs' rows of npRowsAll again, as one block for the gaps' product (npRowsAll keeps a pair's rows together for its force term) */
   PetscScalar    *npGap;         /* 3 npOwned: scratch */
   /* with low-rank updates, F_r of the state's multipliers is updated for the pairs whose forces changed */
   PetscReal      *fAcc;          /* 2n: this rank's exact partial sums */

@@ -989,7 +989,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->marked));
   PetscCall(BoltROMUpdateDestroy(&rom->update));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));
-  PetscCall(PetscFree6(rom->npSlotStart, rom->npD, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
+  PetscCall(PetscFree6(rom->npSlotStart, rom->npGlobalOf, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
   PetscCall(PetscFree2(rom->npRowsAll, rom->npOfPoint));
   PetscCall(PetscSFDestroy(&rom->npSF));
   PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));

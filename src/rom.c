@@ -98,11 +98,12 @@ static PetscInt ROMNodePairs(PetscInt nrec, ROMPointRecord rec[], ROMPointRecord
    components in that order. */
 static void ROMPairForceTerm(const BoltROM *rom, PetscInt k, PetscReal g_[])
 {
-  const PetscReal *restrict D = &rom->npD[3 * rom->n * k];
+  const PetscInt            n = rom->n;
+  const PetscReal *restrict D = &rom->npRowsAll[3 * n * rom->npGlobalOf[k]];
   const PetscReal           f0 = rom->npF[3 * k], f1 = rom->npF[3 * k + 1], f2 = rom->npF[3 * k + 2];
   PetscReal *restrict       g = g_;
 
-  for (PetscInt j = 0; j < rom->n; j++) g[j] = D[3 * j] * f0 + D[3 * j + 1] * f1 + D[3 * j + 2] * f2;
+  for (PetscInt j = 0; j < n; j++) g[j] = D[j] * f0 + D[n + j] * f1 + D[2 * n + j] * f2;
 }
 
 /* F_p of every owned node pair from the multipliers: the local elements' nodal forces go to the
@@ -150,7 +151,7 @@ static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(rom->comm, &size));
   PetscCallMPI(MPI_Comm_rank(rom->comm, &rank));
-  PetscCall(PetscFree6(rom->npSlotStart, rom->npD, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
+  PetscCall(PetscFree6(rom->npSlotStart, rom->npGlobalOf, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
   PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));
   PetscCall(PetscFree2(rom->npRowsAll, rom->npOfPoint));
   PetscCall(PetscSFDestroy(&rom->npSF));
@@ -191,7 +192,7 @@ static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange
     if (k % size == rank) nslots += npts[k];
     if (k % size == rank && live[k]) rom->npLive++;
   }
-  PetscCall(PetscMalloc6(rom->npOwned + 1, &rom->npSlotStart, 3 * n * rom->npOwned + 1, &rom->npD, rom->npOwned + 1, &rom->npDMax, 3 * nslots + 1, &rom->npSlotF, 3 * rom->npOwned + 1, &rom->npF, 3 * rom->npOwned + 1, &rom->npFSum));
+  PetscCall(PetscMalloc6(rom->npOwned + 1, &rom->npSlotStart, rom->npOwned + 1, &rom->npGlobalOf, rom->npOwned + 1, &rom->npDMax, 3 * nslots + 1, &rom->npSlotF, 3 * rom->npOwned + 1, &rom->npF, 3 * rom->npOwned + 1, &rom->npFSum));
   PetscCall(PetscMalloc2(3 * n * npair + 1, &rom->npRowsAll, 4 * c->nelem + 1, &rom->npOfPoint));
   for (PetscInt i = 0; i < 4 * c->nelem; i++) rom->npOfPoint[i] = -1;
   PetscCall(PetscMalloc1(recLen * nmine + 1, &send));
@@ -228,7 +229,7 @@ static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange
     for (PetscInt j = 0; j < n; j++)
       for (PetscInt l = 0; l < 3; l++) rom->npRowsAll[3 * n * k + n * l + j] = x[1 + 3 * j + l];
     if (k % size != rank) continue;
-    PetscCall(PetscArraycpy(&rom->npD[3 * n * (k / size)], x + 1, 3 * n));
+    rom->npGlobalOf[k / size] = k;
     for (PetscInt j = 0; j < 3 * n; j++) mx = PetscMax(mx, PetscAbsReal(x[1 + j]));
     rom->npDMax[k / size] = mx;
   }
@@ -238,7 +239,7 @@ static PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange
     for (PetscInt k = rank, o = 0, nl = 0, nh = 0; k < npair; k += size, o++) rom->npRowOf[o] = live[k] ? 3 * nl++ : 3 * (rom->npLive + nh++);
     for (PetscInt k = 0; k < rom->npOwned; k++)
       for (PetscInt j = 0; j < n; j++)
-        for (PetscInt l = 0; l < 3; l++) rom->npRows[rom->npRowOf[k] + l + ld * j] = rom->npD[3 * n * k + 3 * j + l];
+        for (PetscInt l = 0; l < 3; l++) rom->npRows[rom->npRowOf[k] + l + ld * j] = rom->npRowsAll[3 * n * rom->npGlobalOf[k] + n * l + j];
   }
   PetscCall(PetscFree(recv));
   PetscCall(PetscFree(send));
