@@ -369,8 +369,10 @@ struct BoltOperator_s {
   MPI_Comm          comm;     /* for messages and errors (the ROM's matrices live on every rank) */
   MatSolverType     solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
   PetscBool         exactConstraints; /* every contact gap can be closed (FOM, ROM without interface reduction) */
+  PetscBool         keepStructural; /* the dual loop keeps K + a1 M + a4 C summed for its factorisations (small dense matrices: the ROM) */
   char              prefix[16]; /* options prefix of its solver: fom_ or rom_ */
   Mat               M, C, K;
+  PetscReal         rayleigh[2];   /* C = rayleigh[0] M + rayleigh[1] K (BoltOperatorSetDamping) */
   Vec               load, preload; /* external load pattern and preload, in its coordinates */
   BoltContactSet   *contact;  /* the shared geometry */
   BoltContactState *state;    /* this model's own contact state */
@@ -380,6 +382,7 @@ struct BoltOperator_s {
 
 PetscErrorCode BoltOperatorCreate(MPI_Comm, const char[], BoltContactSet *, BoltOperator **);
 PetscErrorCode BoltOperatorSetSystem(BoltOperator *, Mat, Mat, Mat, Vec, Vec);
+PetscErrorCode BoltOperatorSetDamping(BoltOperator *, Mat, PetscReal, PetscReal);
 PetscErrorCode BoltOperatorView(BoltOperator *, PetscViewer);
 PetscErrorCode BoltOperatorDestroy(BoltOperator **);
 
@@ -426,6 +429,8 @@ struct BoltDual_s {
   PetscReal       massCoef, dampingCoef;
   Mat             Keff;
   KSP             ksp;
+  Mat             Kstruct;        /* K + a1 M + a4 C of structStamp's coefficients (op->keepStructural) */
+  PetscReal       structStamp[3]; /* dynamic, massCoef, dampingCoef it was summed with */
   /* preload calibration: each outer iteration scales to the target clamping force */
   PetscBool       calibrating;
   PetscReal       preloadTarget, preloadScale;
@@ -489,6 +494,9 @@ typedef struct {
   PetscReal       stickEnergy0;  /* frictional law: the elastic sticks' energy at the start of the transient [J] */
   PetscReal      *ledger;     /* per step, BOLT_LEDGER rows of nsteps + 1 (BoltLedger): the energy accounting [J] */
   Vec             vOld, dq;   /* the step's start velocity and displacement change (energy accounting) */
+  /* M and K times the state: M q, M v, M a, K q, K v, K a, and M v, K v of the step's start
+     (BoltNewmarkProducts) */
+  Vec             Mq, Mv, Ma, Kq, Kv, Ka, MvOld, KvOld;
   PetscInt        snapshotEvery, nsnap;
   Vec            *snap;
   PetscReal      *snapTime;
@@ -541,6 +549,7 @@ typedef struct {
   MPI_Comm        comm;
   PetscInt        n;                 /* reduced dimension */
   Mat             Mr, Cr, Kr, Kcr;   /* MATSEQDENSE n x n on every rank */
+  PetscReal       rayleigh[2];       /* C_r = rayleigh[0] M_r + rayleigh[1] K_r */
   Vec             loadr, preloadr;   /* MATSEQ n */
   Vec             loadUnitr;         /* V' (1 N load pattern), kept in the ROM file */
   PetscScalar    *Vc;                /* nlocal x n, column-major: rows of V at contact->localGlobal */

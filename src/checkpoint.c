@@ -24,7 +24,7 @@ static PetscErrorCode BoltCheckpointFingerprint(BoltNewmark *nm, char fp[], size
 
   PetscFunctionBeginUser;
   PetscCall(VecGetSize(nm->q, &n));
-  PetscCall(PetscSNPrintf(fp, len, "boltrom checkpoint 1; model %s; mesh %s; unknowns %" PetscInt_FMT "; contact points %" PetscInt_FMT "; dt %.17g; beta %.17g; gamma %.17g; load history %d, %.17g Hz; contact law %s", op->name, op->contact->mesh->filename, n, op->contact->ngpGlobal, (double)nm->dt, (double)nm->beta, (double)nm->gamma, (int)nm->history, (double)nm->frequency, op->state->augment ? "augmented" : "penalty"));
+  PetscCall(PetscSNPrintf(fp, len, "boltrom checkpoint 2; model %s; mesh %s; unknowns %" PetscInt_FMT "; contact points %" PetscInt_FMT "; dt %.17g; beta %.17g; gamma %.17g; load history %d, %.17g Hz; contact law %s", op->name, op->contact->mesh->filename, n, op->contact->ngpGlobal, (double)nm->dt, (double)nm->beta, (double)nm->gamma, (int)nm->history, (double)nm->frequency, op->state->augment ? "augmented" : "penalty"));
   PetscFunctionReturn(0);
 }
 
@@ -47,24 +47,24 @@ static PetscErrorCode BoltCheckpointFileName(BoltNewmark *nm, char file[], size_
   PetscFunctionReturn(0);
 }
 
-/* The vectors a checkpoint holds, with their dataset names: q, v, a and the snapshots so far.
-   Free with BoltCheckpointVectorsFree. */
+/* The vectors a checkpoint holds, with their dataset names: q, v, a, their products with M and
+   K that the steps carry (BoltNewmarkProductsStep: a continued run takes the same bits), and the
+   snapshots so far. Free with BoltCheckpointVectorsFree. */
+#define BOLT_CKPT_STATE 9
 static PetscErrorCode BoltCheckpointVectors(BoltNewmark *nm, char ***names, Vec **fields)
 {
-  const char *base[3] = {"q", "v", "a"};
-  PetscInt    n       = 3 + nm->nsnap;
+  const char *base[BOLT_CKPT_STATE]  = {"q", "v", "a", "Mq", "Mv", "Ma", "Kq", "Kv", "Ka"};
+  Vec         state[BOLT_CKPT_STATE] = {nm->q, nm->v, nm->acc, nm->Mq, nm->Mv, nm->Ma, nm->Kq, nm->Kv, nm->Ka};
+  PetscInt    n                      = BOLT_CKPT_STATE + nm->nsnap;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(n, names, n, fields));
-  (*fields)[0] = nm->q;
-  (*fields)[1] = nm->v;
-  (*fields)[2] = nm->acc;
   for (PetscInt f = 0; f < n; f++) {
     char name[32];
-    if (f < 3) PetscCall(PetscStrncpy(name, base[f], sizeof(name)));
-    else PetscCall(PetscSNPrintf(name, sizeof(name), "snapshot_%" PetscInt_FMT, f - 3));
+    if (f < BOLT_CKPT_STATE) PetscCall(PetscStrncpy(name, base[f], sizeof(name)));
+    else PetscCall(PetscSNPrintf(name, sizeof(name), "snapshot_%" PetscInt_FMT, f - BOLT_CKPT_STATE));
     PetscCall(PetscStrallocpy(name, &(*names)[f]));
-    if (f >= 3) (*fields)[f] = nm->snap[f - 3];
+    (*fields)[f] = f < BOLT_CKPT_STATE ? state[f] : nm->snap[f - BOLT_CKPT_STATE];
   }
   PetscFunctionReturn(0);
 }
@@ -97,8 +97,8 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/checkpoint"));
   PetscCall(BoltCheckpointVectors(nm, &names, &fields));
-  PetscCall((*op->ops.vectorsSave)(op, v, 3 + nm->nsnap, (const char *const *)names, fields));
-  PetscCall(BoltCheckpointVectorsFree(3 + nm->nsnap, &names, &fields));
+  PetscCall((*op->ops.vectorsSave)(op, v, BOLT_CKPT_STATE + nm->nsnap, (const char *const *)names, fields));
+  PetscCall(BoltCheckpointVectorsFree(BOLT_CKPT_STATE + nm->nsnap, &names, &fields));
   if (op->ops.stateSave) PetscCall((*op->ops.stateSave)(op, v));
   PetscCall(PetscMalloc1(BOLT_CKPT_CONTACT * ne + nhist + 1, &buf));
   for (PetscInt e = 0; e < ne; e++) buf[e] = c->elem[e].key;
@@ -200,8 +200,8 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
     Vec   *fields;
     nm->nsnap = nsnap;
     PetscCall(BoltCheckpointVectors(nm, &names, &fields));
-    PetscCall((*op->ops.vectorsLoad)(op, v, 3 + nsnap, (const char *const *)names, fields, &missing));
-    PetscCall(BoltCheckpointVectorsFree(3 + nsnap, &names, &fields));
+    PetscCall((*op->ops.vectorsLoad)(op, v, BOLT_CKPT_STATE + nsnap, (const char *const *)names, fields, &missing));
+    PetscCall(BoltCheckpointVectorsFree(BOLT_CKPT_STATE + nsnap, &names, &fields));
   }
   /* the contact state of this rank's elements */
   {

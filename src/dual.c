@@ -13,6 +13,21 @@ PetscErrorCode BoltDualInnerRegister(const char name[], BoltDualInnerFn fn)
   PetscFunctionReturn(0);
 }
 
+/* S = K (static) or K + a1 M + a4 C, summed in the pattern fixed at set-up. */
+static PetscErrorCode BoltDualSumStructural(BoltDual *d, Mat S)
+{
+  BoltOperator *op = d->op;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatZeroEntries(S));
+  PetscCall(MatAXPY(S, 1.0, op->K, SUBSET_NONZERO_PATTERN));
+  if (d->dynamic) {
+    PetscCall(MatAXPY(S, d->massCoef, op->M, SUBSET_NONZERO_PATTERN));
+    PetscCall(MatAXPY(S, d->dampingCoef, op->C, SUBSET_NONZERO_PATTERN));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* A = K + K_c (static) or a1 M + a4 C + K + K_c of the current contact state, factorised by ksp;
    timed and counted as the loop's factorisation. A and ksp are the loop's own, or a model's that
    keeps several (the ROM's references). */
@@ -26,14 +41,17 @@ PetscErrorCode BoltDualFactorInto(BoltDual *d, Mat A, KSP ksp)
   PetscCall(PetscTime(&t0));
   PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
   PetscCall(op->ops.contactStiffness(op, &Kc));
-  /* summed afresh in the pattern fixed at set-up, in the order a kept copy of the structural
-     part would give (no FOM-sized copy of it is held: at 562k DOFs memory is the limit) */
-  PetscCall(MatZeroEntries(A));
-  PetscCall(MatAXPY(A, 1.0, op->K, SUBSET_NONZERO_PATTERN));
-  if (d->dynamic) {
-    PetscCall(MatAXPY(A, d->massCoef, op->M, SUBSET_NONZERO_PATTERN));
-    PetscCall(MatAXPY(A, d->dampingCoef, op->C, SUBSET_NONZERO_PATTERN));
-  }
+  if (op->keepStructural) {
+    /* the structural part summed once per set of Newmark coefficients, by the same calls in the
+       same order as below (the same bits): then each factorisation copies it and adds K_c */
+    const PetscReal stamp[3] = {(PetscReal)d->dynamic, d->massCoef, d->dampingCoef};
+    if (!d->Kstruct || stamp[0] != d->structStamp[0] || stamp[1] != d->structStamp[1] || stamp[2] != d->structStamp[2]) {
+      if (!d->Kstruct) PetscCall(MatDuplicate(A, MAT_DO_NOT_COPY_VALUES, &d->Kstruct));
+      PetscCall(BoltDualSumStructural(d, d->Kstruct));
+      PetscCall(PetscArraycpy(d->structStamp, stamp, 3));
+    }
+    PetscCall(MatCopy(d->Kstruct, A, SAME_NONZERO_PATTERN));
+  } else PetscCall(BoltDualSumStructural(d, A)); /* (a FOM-sized copy is not kept: at 562k DOFs memory is the limit) */
   PetscCall(MatAXPY(A, 1.0, Kc, SUBSET_NONZERO_PATTERN));
   PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
@@ -624,6 +642,7 @@ PetscErrorCode BoltDualReleaseSolver(BoltDual *d)
   PetscFunctionBeginUser;
   if (d->ksp) PetscCall(KSPReset(d->ksp));
   PetscCall(MatDestroy(&d->Keff));
+  PetscCall(MatDestroy(&d->Kstruct));
   PetscFunctionReturn(0);
 }
 
@@ -639,6 +658,7 @@ PetscErrorCode BoltDualDestroy(BoltDual **dp)
   PetscCall(VecDestroy(&d->FcLambda));
   PetscCall(PetscFree4(d->cgR, d->cgP, d->cgAp, d->tnOpen));
   PetscCall(MatDestroy(&d->Keff));
+  PetscCall(MatDestroy(&d->Kstruct));
   PetscCall(KSPDestroy(&d->ksp));
   PetscCall(PetscFree(*dp));
   PetscFunctionReturn(0);

@@ -110,7 +110,12 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   op->exactConstraints = PETSC_TRUE;
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
   PetscCall(BoltOperatorSetSystem(op, asmb->M, NULL, asmb->K, loads->load, loads->preload));
-  if (transient) PetscCall(BoltAssemblerDamping(asmb, &op->C));
+  if (transient) {
+    Mat C;
+    PetscCall(BoltAssemblerDamping(asmb, &C));
+    PetscCall(BoltOperatorSetDamping(op, C, asmb->rayleighAlpha, asmb->rayleighBeta));
+    PetscCall(MatDestroy(&C));
+  }
   op->ctx                      = ctx;
   op->ops.contactDisplacements = FOMContactDisplacements;
   op->ops.contactForces        = FOMContactForces;

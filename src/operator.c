@@ -34,6 +34,20 @@ PetscErrorCode BoltOperatorSetSystem(BoltOperator *op, Mat M, Mat C, Mat K, Vec 
   PetscFunctionReturn(0);
 }
 
+/* Rayleigh damping C = alpha M + beta K: the matrix for the effective matrix's factorisations
+   (referenced), the coefficients for Newmark's right-hand sides and energy accounting, which then
+   need M and K times the displacement alone. */
+PetscErrorCode BoltOperatorSetDamping(BoltOperator *op, Mat C, PetscReal alpha, PetscReal beta)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectReference((PetscObject)C));
+  PetscCall(MatDestroy(&op->C));
+  op->C           = C;
+  op->rayleigh[0] = alpha;
+  op->rayleigh[1] = beta;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltOperatorView(BoltOperator *op, PetscViewer viewer)
 {
   PetscInt n;

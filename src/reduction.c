@@ -756,8 +756,10 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(PetscNew(&rom));
-  rom->comm    = o->comm;
-  rom->contact = contact;
+  rom->comm        = o->comm;
+  rom->contact     = contact;
+  rom->rayleigh[0] = asmb->rayleighAlpha; /* C_r = V' C V (a ROM file holds the same: its fingerprint has them) */
+  rom->rayleigh[1] = asmb->rayleighBeta;
   /* With interface reduction the ROM has fewer DOFs than contact constraints: multipliers that
      close every active gap are not unique (their signs, which decide the active set, are
      arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps
@@ -827,6 +829,8 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
         PetscCall(PetscTime(&t3));
         loaded->tOffline = t3 - t0;
         loaded->augment  = rom->augment;
+        loaded->rayleigh[0] = rom->rayleigh[0];
+        loaded->rayleigh[1] = rom->rayleigh[1];
         loaded->penaltyScale = rom->penaltyScale;
         loaded->nClosed      = rom->nClosed;
         loaded->openingScale = rom->openingScale;

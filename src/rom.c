@@ -891,9 +891,11 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltOperatorCreate(rom->comm, "ROM", rom->contact, &op));
   op->solverType       = MATSOLVERPETSC;
   op->exactConstraints = (rom->nCCM + rom->nJIM) ? PETSC_FALSE : PETSC_TRUE;
+  op->keepStructural   = PETSC_TRUE; /* n^2 values: a factorisation then adds K_cr to a copy */
   op->state->augment   = rom->augment; /* -rom_contact_augment */
   PetscCall(PetscStrncpy(op->prefix, "rom_", sizeof(op->prefix)));
-  PetscCall(BoltOperatorSetSystem(op, rom->Mr, rom->Cr, rom->Kr, rom->loadr, rom->preloadr));
+  PetscCall(BoltOperatorSetSystem(op, rom->Mr, NULL, rom->Kr, rom->loadr, rom->preloadr));
+  PetscCall(BoltOperatorSetDamping(op, rom->Cr, rom->rayleigh[0], rom->rayleigh[1]));
   op->ctx                      = rom;
   op->ops.contactDisplacements = ROMContactDisplacements;
   op->ops.contactForces        = ROMContactForces;

@@ -50,7 +50,7 @@ struct BoltROMUpdate_s {
   PetscInt      k;
   PetscInt     *act, *first, *last, *node; /* per active slot: pool slot, its element's first and last active slot, its node */
   PetscReal    *S;               /* 36 per active slot: its rows of the element's difference (3 x 12, row-major) */
-  PetscReal    *Ua, *Za, *C, *t, *w;
+  PetscReal    *C, *t, *w;
   PetscBLASInt *piv;
   /* gathering */
   PetscReal   *send, *recv;
@@ -252,10 +252,6 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
     u->first[i] = (i > 0 && u->name[i - 1] / 4 == u->name[i] / 4) ? u->first[i - 1] : i;
   }
   for (PetscInt i = nrec - 1; i >= 0; i--) u->last[i] = (i < nrec - 1 && u->name[i + 1] / 4 == u->name[i] / 4) ? u->last[i + 1] : i;
-  for (PetscInt i = 0; i < nrec; i++) {
-    PetscCall(PetscArraycpy(&u->Ua[3 * n * i], &ref->U[3 * n * u->act[i]], 3 * n));
-    PetscCall(PetscArraycpy(&u->Za[3 * n * i], &ref->Z[3 * n * u->act[i]], 3 * n));
-  }
   /* column by column of G (its rows of the active slots gathered into t), the three rows of a slot
      side by side: three independent sums, each in the order l, s */
   for (PetscInt j = 0; j < nrec; j++)
@@ -378,17 +374,21 @@ static PetscErrorCode ROMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x
   BoltROMUpdate *u   = rom->update;
   const PetscInt n = rom->n, k = u->k, m = 3 * k;
   PetscScalar   *xa;
-  PetscBLASInt   bn, bm, one = 1, info;
+  ROMReference  *ref;
+  PetscBLASInt   bn, bm, one = 1, three = 3, info;
   PetscReal      pone = 1, zero = 0, mone = -1;
 
   PetscFunctionBeginUser;
   PetscCheck(u->cur >= 0 && u->ref[u->cur].valid, PETSC_COMM_SELF, PETSC_ERR_PLIB, "ROM: a solve before a factorisation");
-  PetscCall(KSPSolve(u->ref[u->cur].ksp, b, x));
+  ref = &u->ref[u->cur];
+  PetscCall(KSPSolve(ref->ksp, b, x));
   if (!k) PetscFunctionReturn(0);
   PetscCall(PetscBLASIntCast(n, &bn));
   PetscCall(PetscBLASIntCast(m, &bm));
   PetscCall(VecGetArray(x, &xa));
-  PetscCallBLAS("BLASgemv", BLASgemv_("T", &bn, &bm, &pone, u->Ua, &bn, xa, &one, &zero, u->t, &one));
+  /* U' x and x - Z w slot by slot, on the pool's columns where they are (a copy of the active
+     ones side by side cost more, at every set change, than these calls) */
+  for (PetscInt i = 0; i < k; i++) PetscCallBLAS("BLASgemv", BLASgemv_("T", &bn, &three, &pone, &ref->U[3 * n * u->act[i]], &bn, xa, &one, &zero, &u->t[3 * i], &one));
   for (PetscInt i = 0; i < k; i++)
     for (PetscInt p = 0; p < 3; p++) {
       PetscReal v = 0;
@@ -397,7 +397,7 @@ static PetscErrorCode ROMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x
       u->w[3 * i + p] = v;
     }
   PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bm, &one, u->C, &bm, u->piv, u->w, &bm, &info));
-  PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bm, &mone, u->Za, &bn, u->w, &one, &pone, xa, &one));
+  for (PetscInt i = 0; i < k; i++) PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &three, &mone, &ref->Z[3 * n * u->act[i]], &bn, &u->w[3 * i], &one, &pone, xa, &one));
   PetscCall(VecRestoreArray(x, &xa));
   PetscFunctionReturn(0);
 }
@@ -443,7 +443,7 @@ PetscErrorCode BoltROMUpdateCreate(BoltROM *rom, BoltOperator *op, PetscInt maxR
   PetscCall(PetscArraycpy(u->Kcur, rom->Ke, 144 * ne)); /* K_cr is built: its blocks are the current ones */
   for (PetscInt e = 0; e < ne; e++) u->devRun[e] = PETSC_FALSE;
   PetscCall(PetscMalloc5(u->alloc, &u->act, u->alloc, &u->first, u->alloc, &u->last, u->alloc, &u->node, 36 * u->alloc, &u->S));
-  PetscCall(PetscMalloc6(3 * n * u->alloc, &u->Ua, 3 * n * u->alloc, &u->Za, 9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w, 3 * u->alloc, &u->piv));
+  PetscCall(PetscMalloc4(9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w, 3 * u->alloc, &u->piv));
   rom->update    = u;
   op->ops.factor = ROMUpdateFactor;
   op->ops.solve  = ROMUpdateSolve;
@@ -479,7 +479,7 @@ PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **up)
   }
   PetscCall(PetscFree2(u->Kcur, u->devRun));
   PetscCall(PetscFree5(u->act, u->first, u->last, u->node, u->S));
-  PetscCall(PetscFree6(u->Ua, u->Za, u->C, u->t, u->w, u->piv));
+  PetscCall(PetscFree4(u->C, u->t, u->w, u->piv));
   PetscCall(PetscFree(u->send));
   PetscCall(PetscFree(u->recv));
   PetscCall(PetscFree2(u->name, u->perm));
