@@ -493,7 +493,7 @@ typedef struct {
   PetscReal      *slipping, *dissipated; /* per step: slipping contact points, energy dissipated by friction so far [J] */
   PetscReal       stickEnergy0;  /* frictional law: the elastic sticks' energy at the start of the transient [J] */
   PetscReal      *ledger;     /* per step, BOLT_LEDGER rows of nsteps + 1 (BoltLedger): the energy accounting [J] */
-  Vec             vOld, dq;   /* the step's start velocity and displacement change (energy accounting) */
+  Vec             dq;         /* the step's displacement change (energy accounting) */
   /* M and K times the state: M q, M v, M a, K q, K v, K a, and M v, K v of the step's start
      (BoltNewmarkProducts) */
   Vec             Mq, Mv, Ma, Kq, Kv, Ka, MvOld, KvOld;

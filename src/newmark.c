@@ -89,7 +89,6 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscCall(VecDuplicate(nm->q, &nm->rhs));
   PetscCall(VecDuplicate(nm->q, &nm->work));
   PetscCall(PetscCalloc6(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy, nm->nsteps + 1, &nm->slipping, nm->nsteps + 1, &nm->dissipated, BOLT_LEDGER * (nm->nsteps + 1), &nm->ledger));
-  PetscCall(VecDuplicate(nm->q, &nm->vOld));
   PetscCall(VecDuplicate(nm->q, &nm->dq));
   for (PetscInt i = 0; i < 8; i++) PetscCall(VecDuplicate(nm->q, BoltNewmarkProductVec(nm, i)));
   if (nm->snapshotEvery > 0) {
@@ -174,8 +173,8 @@ static PetscErrorCode BoltNewmarkEnergy(BoltNewmark *nm, PetscReal amp, PetscRea
   PetscFunctionReturn(0);
 }
 
-/* Row n of the energy accounting (BoltLedger) from the step n-1 -> n: q, v hold the new state,
-   vOld the step's start velocity, dq the displacement change; amp0, amp the load's amplitudes
+/* Row n of the energy accounting (BoltLedger) from the step n-1 -> n: q, v and their products
+   hold the new state, MvOld and KvOld the step's start, dq the displacement change; amp0, amp the load's amplitudes
    at the step's ends; ek = v'M v and es = q'K q of the new state. Row 0: the preloaded start. */
 static PetscErrorCode BoltNewmarkLedger(BoltNewmark *nm, PetscInt n, PetscReal amp0, PetscReal amp, PetscScalar ek, PetscScalar es)
 {
@@ -311,12 +310,10 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     /* a_new = a1 (q - q_old) - a2 v - a3 a;  v_new = v + dt ((1 - gamma) a + gamma a_new) */
     PetscCall(VecWAXPY(nm->work, -1.0, qOld, nm->q));
     PetscCall(VecAXPBYPCZ(nm->work, -a[2], -a[3], a[1], nm->v, nm->acc));
-    PetscCall(VecCopy(nm->v, nm->vOld));
     PetscCall(VecAXPBYPCZ(nm->v, (1 - nm->gamma) * nm->dt, nm->gamma * nm->dt, 1.0, nm->acc, nm->work));
     PetscCall(VecCopy(nm->work, nm->acc));
     if (nm->quasiStatic) { /* no motion between equilibria */
       PetscCall(VecZeroEntries(nm->v));
-      PetscCall(VecZeroEntries(nm->vOld));
       PetscCall(VecZeroEntries(nm->acc));
     }
     PetscCall(BoltNewmarkProductsStep(nm));
@@ -388,7 +385,6 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   PetscCall(VecDestroy(&nm->rhs));
   PetscCall(VecDestroy(&nm->work));
   PetscCall(PetscFree6(nm->probeTime, nm->probeValue, nm->energy, nm->slipping, nm->dissipated, nm->ledger));
-  PetscCall(VecDestroy(&nm->vOld));
   PetscCall(VecDestroy(&nm->dq));
   for (PetscInt i = 0; i < 8; i++) PetscCall(VecDestroy(BoltNewmarkProductVec(nm, i)));
   if (nm->snap) PetscCall(VecDestroyVecs(nm->nsteps / nm->snapshotEvery + 1, &nm->snap));
