@@ -495,7 +495,7 @@ typedef struct {
   PetscReal      *ledger;     /* per step, BOLT_LEDGER rows of nsteps + 1 (BoltLedger): the energy accounting [J] */
   Vec             dq;         /* the step's displacement change (energy accounting) */
   /* M and K times the state: M q, M v, M a, K q, K v, K a, and M v, K v of the step's start
-     (BoltNewmarkProducts) */
+     (BoltNewmarkProductsStep) */
   Vec             Mq, Mv, Ma, Kq, Kv, Ka, MvOld, KvOld;
   PetscInt        snapshotEvery, nsnap;
   Vec            *snap;

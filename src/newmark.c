@@ -174,8 +174,9 @@ static PetscErrorCode BoltNewmarkEnergy(BoltNewmark *nm, PetscReal amp, PetscRea
 }
 
 /* Row n of the energy accounting (BoltLedger) from the step n-1 -> n: q, v and their products
-   hold the new state, MvOld and KvOld the step's start, dq the displacement change; amp0, amp the load's amplitudes
-   at the step's ends; ek = v'M v and es = q'K q of the new state. Row 0: the preloaded start. */
+   hold the new state, MvOld and KvOld the step's start, dq the displacement change; amp0, amp
+   the load's amplitudes at the step's ends; ek = v'M v and es = q'K q of the new state. Row 0:
+   the preloaded start. */
 static PetscErrorCode BoltNewmarkLedger(BoltNewmark *nm, PetscInt n, PetscReal amp0, PetscReal amp, PetscScalar ek, PetscScalar es)
 {
   BoltOperator *op = nm->op;
