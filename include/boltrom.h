@@ -48,6 +48,8 @@ typedef struct {
   char              filename[PETSC_MAX_PATH_LEN];
   char              clampGroup[BOLTROM_NAME_LEN];
   PetscBool         clamp;          /* remove the clamp group's DOFs from the global system */
+  char              supportGroup[BOLTROM_NAME_LEN]; /* -support_group: nodes held in some components only ("": none) */
+  PetscInt          supportComponents[3], nsupportComponents; /* the components held there, ascending */
   char              partitioner[64]; /* metis (ours, through a shell partitioner) or a PETSc type */
   DM                dm;
   PetscInt          nparts;
@@ -267,6 +269,8 @@ PetscErrorCode BoltContactStateSetTotals(BoltContactState *, PetscReal, PetscRea
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
 PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);
+#define BOLT_PAIR_FORCE 4 /* per pair: the force on side b (x, y, z) and the normal force */
+PetscErrorCode BoltContactStatePairForces(BoltContactState *, PetscReal[]);
 PetscErrorCode BoltContactStateNodalForces(BoltContactState *, Vec);
 /* A contact point's state in the output (BoltContactStatePointCodes): open, closed and sticking
    (inside the cone under friction), or closed and sliding (on the cone, or a re-closed pair that
@@ -493,6 +497,7 @@ typedef struct {
   PetscReal      *slipping, *dissipated; /* per step: slipping contact points, energy dissipated by friction so far [J] */
   PetscReal       stickEnergy0;  /* frictional law: the elastic sticks' energy at the start of the transient [J] */
   PetscReal      *ledger;     /* per step, BOLT_LEDGER rows of nsteps + 1 (BoltLedger): the energy accounting [J] */
+  PetscReal      *pairForce;  /* per step, BOLT_PAIR_FORCE per contact pair (BoltContactStatePairForces) [N] */
   Vec             dq;         /* the step's displacement change (energy accounting) */
   /* M and K times the state: M q, M v, M a, K q, K v, K a, and M v, K v of the step's start
      (BoltNewmarkProductsStep) */
@@ -730,6 +735,7 @@ PetscErrorCode BoltOutputOpen(BoltMesh *, const char[], const char[], BoltOutput
 PetscErrorCode BoltOutputVertexField(BoltOutput *, BoltMesh *, Vec, const char[]);
 PetscErrorCode BoltOutputClose(BoltOutput *, BoltMesh *);
 PetscErrorCode BoltOutputSeries(BoltOutput *, const char[], const char[], PetscInt, const PetscReal[]);
+PetscErrorCode BoltOutputPairForces(BoltOutput *, const char[], BoltContactSet *, PetscInt, const PetscReal[]);
 PetscErrorCode BoltOutputSnapshots(BoltOutput *, BoltMesh *, PetscInt, Vec[], const PetscReal[]);
 PetscErrorCode BoltOutputContactState(BoltOutput *, BoltMesh *, BoltContactSet *, const unsigned char[], const char[]);
 PetscErrorCode BoltOutputSnapshotStates(BoltOutput *, BoltMesh *, BoltContactSet *, PetscInt, const unsigned char[]);

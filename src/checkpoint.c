@@ -8,7 +8,7 @@
      and its contact state at its 4 points (BoltContactStatePack: multipliers, gaps, active flags
      of the last three outer iterations, anchors, friction state);
    - history: the step counters and timings, then the probe, energy, slipping-pair, friction
-     dissipation, energy accounting and snapshot-time histories.
+     dissipation, energy accounting, pair-force and snapshot-time histories.
    A restart may use other ranks: every rank reads the keyed data and picks its own rows. */
 #include "boltrom.h"
 #include <petscviewerhdf5.h>
@@ -24,7 +24,7 @@ static PetscErrorCode BoltCheckpointFingerprint(BoltNewmark *nm, char fp[], size
 
   PetscFunctionBeginUser;
   PetscCall(VecGetSize(nm->q, &n));
-  PetscCall(PetscSNPrintf(fp, len, "boltrom checkpoint 2; model %s; mesh %s; unknowns %" PetscInt_FMT "; contact points %" PetscInt_FMT "; dt %.17g; beta %.17g; gamma %.17g; load history %d, %.17g Hz; contact law %s", op->name, op->contact->mesh->filename, n, op->contact->ngpGlobal, (double)nm->dt, (double)nm->beta, (double)nm->gamma, (int)nm->history, (double)nm->frequency, op->state->augment ? "augmented" : "penalty"));
+  PetscCall(PetscSNPrintf(fp, len, "boltrom checkpoint 3; model %s; mesh %s; unknowns %" PetscInt_FMT "; contact points %" PetscInt_FMT "; dt %.17g; beta %.17g; gamma %.17g; load history %d, %.17g Hz; contact law %s", op->name, op->contact->mesh->filename, n, op->contact->ngpGlobal, (double)nm->dt, (double)nm->beta, (double)nm->gamma, (int)nm->history, (double)nm->frequency, op->state->augment ? "augmented" : "penalty"));
   PetscFunctionReturn(0);
 }
 
@@ -83,7 +83,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   BoltContactSet *c    = op->contact;
   MPI_Comm        comm = op->comm;
   PetscMPIInt     rank;
-  PetscInt        nhist = BOLT_CKPT_NGLOBALS + (5 + BOLT_LEDGER) * (nm->step + 1) + nm->nsnap, k = 0, ne = c->nelem;
+  PetscInt        nhist = BOLT_CKPT_NGLOBALS + (5 + BOLT_LEDGER + BOLT_PAIR_FORCE * c->npairs) * (nm->step + 1) + nm->nsnap, k = 0, ne = c->nelem;
   PetscScalar    *buf;
   PetscViewer     v;
   char            file[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN + 8], fp[PETSC_MAX_PATH_LEN + 512], **names;
@@ -129,6 +129,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->dissipated[i];
     for (PetscInt r = 0; r < BOLT_LEDGER; r++)
       for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->ledger[r * (nm->nsteps + 1) + i];
+    for (PetscInt i = 0; i < BOLT_PAIR_FORCE * c->npairs * (nm->step + 1); i++) buf[k++] = nm->pairForce[i];
     for (PetscInt i = 0; i < nm->nsnap; i++) buf[k++] = nm->snapTime[i];
     PetscCall(BoltHDF5WriteValues(v, comm, "history", nhist, 1, buf, PETSC_TRUE));
   }
@@ -191,7 +192,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   PetscCall(PetscViewerHDF5PushGroup(v, "/checkpoint"));
   PetscCall(BoltReadAll(v, comm, "history", &n, &h));
   nsnap = (PetscInt)h[1];
-  PetscCheck(n == BOLT_CKPT_NGLOBALS + (5 + BOLT_LEDGER) * (step + 1) + nsnap && (PetscInt)h[0] == step, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (its history does not match its step)", file);
+  PetscCheck(n == BOLT_CKPT_NGLOBALS + (5 + BOLT_LEDGER + BOLT_PAIR_FORCE * c->npairs) * (step + 1) + nsnap && (PetscInt)h[0] == step, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (its history does not match its step)", file);
   PetscCheck(nsnap == 0 || (nm->snapshotEvery > 0 && nsnap <= nm->nsteps / nm->snapshotEvery + 1), comm, PETSC_ERR_USER_INPUT, "-restart: the checkpoint %s holds snapshots: restart with the same -snapshot_every", file);
 
   /* the model's vectors */
@@ -274,6 +275,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   for (PetscInt i = 0; i <= step; i++) nm->dissipated[i] = h[k++];
   for (PetscInt r = 0; r < BOLT_LEDGER; r++)
     for (PetscInt i = 0; i <= step; i++) nm->ledger[r * (nm->nsteps + 1) + i] = h[k++];
+  for (PetscInt i = 0; i < BOLT_PAIR_FORCE * c->npairs * (step + 1); i++) nm->pairForce[i] = h[k++];
   for (PetscInt i = 0; i < nsnap; i++) nm->snapTime[i] = h[k++];
   PetscCall(PetscFree(h));
   /* the contact tractions' work and the friction's dissipation so far go on from the histories'

@@ -190,7 +190,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
   c->contactDofs = 0;
   for (PetscInt p = 0; p < c->npairs; p++) {
     char            na[BOLTROM_NAME_LEN + 16], nb[BOLTROM_NAME_LEN + 16];
-    PetscInt        nb_nodes, nunmatched = 0, partA = -1, partB = -1, nelemLocal = 0, counts[2], nvA, nvB, *vA, *vB;
+    PetscInt        nb_nodes, nunmatched = 0, npartial = 0, partA = -1, partB = -1, nelemLocal = 0, counts[2], nvA, nvB, *vA, *vB;
     BoltNode       *bnodes = NULL;
     PetscReal       area = 0, bad[3] = {0, 0, 0};
 
@@ -270,6 +270,10 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
           } else
             for (PetscInt d = 0; d < 3; d++) e->dofs[12 + 3 * a + d] = bn->dofs[d];
         }
+        for (PetscInt k = 0; k < 8; k++) { /* a node held in some components only (-support_group) */
+          const PetscInt *d3 = &e->dofs[3 * k];
+          if ((d3[0] < 0 || d3[1] < 0 || d3[2] < 0) && (d3[0] >= 0 || d3[1] >= 0 || d3[2] >= 0)) npartial++;
+        }
         PetscCall(QuadArea(X, &faceArea));
         area += faceArea;
         c->nelem++;
@@ -293,6 +297,8 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
         PetscCallMPI(MPI_Bcast(gbad, 3, MPIU_REAL, worst, m->comm));
       }
       PetscCheck(!g, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: %" PetscInt_FMT " node(s) of side a have no partner on side b, e.g. (%g, %g, %g): the two surfaces must be meshed node to node", c->pairName[p], g, (double)(g ? gbad[0] : 0), (double)(g ? gbad[1] : 0), (double)(g ? gbad[2] : 0));
+      PetscCall(MPIU_Allreduce(&npartial, &g, 1, MPIU_INT, MPI_SUM, m->comm));
+      PetscCheck(!g, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: the support group '%s' holds %" PetscInt_FMT " of its nodes in some components only, which contact does not take: choose a -support_group off the contact surfaces", c->pairName[p], m->supportGroup, g);
     }
     PetscCall(BoltMeshGroupVertices(m, na, PETSC_TRUE, &nvA, &vA));
     PetscCall(BoltMeshGroupVertices(m, nb, PETSC_TRUE, &nvB, &vB));

@@ -793,22 +793,36 @@ static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt g
   s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[c->elem[e].pair], BoltContactStateEpsT(s, gp, c->elem[e].pair), t);
 }
 
-/* Sum over each pair of the normal contact force, int t.n dA (negative in compression). */
-PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *s, PetscReal force[])
+/* Each pair's resultant over all ranks, BOLT_PAIR_FORCE values per pair: the force on its side b,
+   -int t dA (x, y, z) [N], and the normal force int t.n dA (negative in compression). What a
+   joint transmits through each interface, and how near its shear is to mu times its clamp. */
+PetscErrorCode BoltContactStatePairForces(BoltContactState *s, PetscReal force[])
 {
   BoltContactSet *c = s->set;
 
   PetscFunctionBeginUser;
-  for (PetscInt p = 0; p < c->npairs; p++) force[p] = 0;
+  for (PetscInt p = 0; p < BOLT_PAIR_FORCE * c->npairs; p++) force[p] = 0;
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt         gp = 4 * e + q;
-      PetscReal        t[3];
-      const PetscReal *n = &c->gpNormal[3 * gp];
+      PetscReal        t[3], *f = &force[BOLT_PAIR_FORCE * c->elem[e].pair];
+      const PetscReal *n = &c->gpNormal[3 * gp], w = c->gpW[gp];
       BoltContactStateTraction(s, e, gp, t);
-      force[c->elem[e].pair] += c->gpW[gp] * (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
+      for (PetscInt k = 0; k < 3; k++) f[k] -= w * t[k];
+      f[3] += w * (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
     }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, force, (PetscMPIInt)c->npairs, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, force, (PetscMPIInt)(BOLT_PAIR_FORCE * c->npairs), MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Sum over each pair of the normal contact force, int t.n dA (negative in compression). */
+PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *s, PetscReal force[])
+{
+  PetscReal all[BOLT_PAIR_FORCE * BOLTROM_MAX_PAIRS];
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactStatePairForces(s, all));
+  for (PetscInt p = 0; p < s->set->npairs; p++) force[p] = all[BOLT_PAIR_FORCE * p + 3];
   PetscFunctionReturn(0);
 }
 

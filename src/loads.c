@@ -52,6 +52,16 @@ PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *l)
   PetscFunctionReturn(0);
 }
 
+/* Adds a node's three values to f at its free components (idx -1 where clamped or supported:
+   VecSetValues would write before the array, unchecked in an optimised PETSc). */
+static PetscErrorCode BoltVecAddNode(Vec f, const PetscInt idx[3], const PetscScalar v[3])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < 3; d++)
+    if (idx[d] >= 0) PetscCall(VecSetValue(f, idx[d], v[d], ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
 /* Equal shares of `force` along `dir` on the owned vertices of a group (a point load when the
    group is one node). Returns the global node count. */
 static PetscErrorCode BoltLoadSpread(BoltMesh *m, const char group[], const PetscReal dir[3], PetscReal force, Vec f, PetscInt *nglobal)
@@ -66,9 +76,8 @@ static PetscErrorCode BoltLoadSpread(BoltMesh *m, const char group[], const Pets
     PetscInt    idx[3];
     PetscScalar v[3];
     PetscCall(BoltMeshVertexDofs(m, verts[i], idx));
-    if (idx[0] < 0) continue; /* clamped: VecSetValues would write before the array (no check in an optimised PETSc) */
     for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] / n;
-    PetscCall(VecSetValues(f, 3, idx, v, ADD_VALUES));
+    PetscCall(BoltVecAddNode(f, idx, v));
   }
   PetscCall(PetscFree(verts));
   PetscCall(VecAssemblyBegin(f));
@@ -99,9 +108,8 @@ static PetscErrorCode BoltLoadFaces(BoltMesh *m, PetscInt nfaces, const PetscInt
       PetscInt    idx[3];
       PetscScalar v[3];
       PetscCall(BoltMeshVertexDofs(m, fv[4 * i + a], idx));
-      if (idx[0] < 0) continue; /* clamped, as above */
       for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] * area[i] / (4 * aglob);
-      PetscCall(VecSetValues(f, 3, idx, v, ADD_VALUES));
+      PetscCall(BoltVecAddNode(f, idx, v));
     }
   PetscCall(VecAssemblyBegin(f));
   PetscCall(VecAssemblyEnd(f));
@@ -172,7 +180,7 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
       clamped = idx[l->probeComponent] < 0;
     }
     PetscCall(MPIU_Allreduce(&clamped, &any, 1, MPIU_INT, MPI_MAX, m->comm));
-    PetscCheck(!any, m->comm, PETSC_ERR_USER_INPUT, "Probe group '%s' is a clamped node (group '%s'): its displacement is zero; choose a free node with -probe_group", l->probeGroup, m->clampGroup);
+    PetscCheck(!any, m->comm, PETSC_ERR_USER_INPUT, "Probe group '%s' is a clamped node (group '%s'%s%s%s) in component %" PetscInt_FMT ": its displacement is zero; choose a free node with -probe_group or another -probe_component", l->probeGroup, m->clampGroup, m->supportGroup[0] ? ", or support group '" : "", m->supportGroup, m->supportGroup[0] ? "'" : "", l->probeComponent);
   }
   if (nv > 0) {
     PetscInt           idx[3], off;

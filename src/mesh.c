@@ -34,6 +34,18 @@ PetscErrorCode BoltMeshSetFromOptions(BoltMesh *m)
   PetscCall(PetscOptionsString("-mesh", "gmsh mesh file (.msh) with the physical groups of docs/model.md", NULL, m->filename, m->filename, sizeof(m->filename), &set));
   PetscCall(PetscOptionsString("-clamp_group", "Physical group whose nodes are fully clamped", NULL, m->clampGroup, m->clampGroup, sizeof(m->clampGroup), NULL));
   PetscCall(PetscOptionsBool("-clamp", "Remove the clamp group's DOFs (false: free-free model)", NULL, m->clamp, &m->clamp, NULL));
+  PetscCall(PetscOptionsString("-support_group", "Physical group whose nodes are held in the components -support_components only (a guide, e.g. a test machine's grip at the loaded end); none by default", NULL, m->supportGroup, m->supportGroup, sizeof(m->supportGroup), NULL));
+  {
+    PetscInt  comp[3] = {1, 2, 0}, ncomp = 3;
+    PetscBool cset;
+    PetscCall(PetscOptionsIntArray("-support_components", "Components held at -support_group, 0 x, 1 y, 2 z, comma separated", NULL, comp, &ncomp, &cset));
+    if (!cset) ncomp = 2;
+    PetscCheck(ncomp >= 1, m->comm, PETSC_ERR_USER_INPUT, "-support_components needs at least one of 0, 1, 2 (x, y, z)");
+    PetscCall(PetscSortRemoveDupsInt(&ncomp, comp));
+    for (PetscInt i = 0; i < ncomp; i++) PetscCheck(comp[i] >= 0 && comp[i] <= 2, m->comm, PETSC_ERR_USER_INPUT, "-support_components: %" PetscInt_FMT " is not a component; use 0, 1, 2 (x, y, z)", comp[i]);
+    for (PetscInt i = 0; i < ncomp; i++) m->supportComponents[i] = comp[i];
+    m->nsupportComponents = ncomp;
+  }
   PetscCall(PetscOptionsString("-partitioner", "Mesh partitioner: metis (boltrom's, through a shell partitioner) or a PETSc partitioner type (ptscotch, simple, ...)", NULL, m->partitioner, m->partitioner, sizeof(m->partitioner), NULL));
   PetscCall(PetscOptionsString("-part_material", "Material of each part, as part:material pairs separated by commas", NULL, m->partMaterialMap, m->partMaterialMap, sizeof(m->partMaterialMap), NULL));
   PetscCall(PetscOptionsEnum("-element", "Hexahedron formulation: full (2x2x2 Gauss) or incompatible (Wilson-Taylor modes, no bending locking)", "Hex8Formulation", forms, (PetscEnum)m->formulation, (PetscEnum *)&m->formulation, NULL));
@@ -412,7 +424,7 @@ PetscErrorCode BoltMeshFaceVertices(BoltMesh *m, PetscInt face, PetscInt *nv, Pe
 static PetscErrorCode BoltMeshCreateSection(BoltMesh *m)
 {
   PetscSection s;
-  PetscInt     pStart, pEnd, nclamp = 0, *clampVerts = NULL;
+  PetscInt     pStart, pEnd, nclamp = 0, *clampVerts = NULL, nsupport = 0, *supportVerts = NULL;
   const PetscInt all[3] = {0, 1, 2};
 
   PetscFunctionBeginUser;
@@ -426,6 +438,14 @@ static PetscErrorCode BoltMeshCreateSection(BoltMesh *m)
     PetscCall(PetscSectionSetDof(s, v, 3));
     PetscCall(PetscSectionSetFieldDof(s, v, 0, 3));
   }
+  /* a node of both groups is clamped: the support goes first, the clamp overrides it */
+  if (m->supportGroup[0]) {
+    PetscCall(BoltMeshGroupVertices(m, m->supportGroup, PETSC_FALSE, &nsupport, &supportVerts));
+    for (PetscInt i = 0; i < nsupport; i++) {
+      PetscCall(PetscSectionSetConstraintDof(s, supportVerts[i], m->nsupportComponents));
+      PetscCall(PetscSectionSetFieldConstraintDof(s, supportVerts[i], 0, m->nsupportComponents));
+    }
+  }
   if (m->clamp) {
     PetscCall(BoltMeshGroupVertices(m, m->clampGroup, PETSC_FALSE, &nclamp, &clampVerts));
     for (PetscInt i = 0; i < nclamp; i++) {
@@ -434,11 +454,19 @@ static PetscErrorCode BoltMeshCreateSection(BoltMesh *m)
     }
   }
   PetscCall(PetscSectionSetUp(s));
+  for (PetscInt i = 0; i < nsupport; i++) {
+    PetscInt cdof;
+    PetscCall(PetscSectionGetConstraintDof(s, supportVerts[i], &cdof));
+    if (cdof == 3) continue; /* clamped as well */
+    PetscCall(PetscSectionSetConstraintIndices(s, supportVerts[i], m->supportComponents));
+    PetscCall(PetscSectionSetFieldConstraintIndices(s, supportVerts[i], 0, m->supportComponents));
+  }
   for (PetscInt i = 0; i < nclamp; i++) {
     PetscCall(PetscSectionSetConstraintIndices(s, clampVerts[i], all));
     PetscCall(PetscSectionSetFieldConstraintIndices(s, clampVerts[i], 0, all));
   }
   PetscCall(PetscFree(clampVerts));
+  PetscCall(PetscFree(supportVerts));
   PetscCall(DMSetLocalSection(m->dm, s));
   PetscCall(PetscSectionDestroy(&s));
   PetscFunctionReturn(0);
@@ -509,6 +537,10 @@ PetscErrorCode BoltMeshSetUp(BoltMesh *m)
   if (m->clamp) {
     PetscCall(BoltMeshHasGroup(m, m->clampGroup, &has));
     PetscCheck(has, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has no physical group '%s' to clamp: add it, set -clamp_group NAME, or run free-free with -clamp false", m->filename, m->clampGroup);
+  }
+  if (m->supportGroup[0]) {
+    PetscCall(BoltMeshHasGroup(m, m->supportGroup, &has));
+    PetscCheck(has, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has no physical group '%s' to support: check -support_group (the mesh's groups are in docs/model.md)", m->filename, m->supportGroup);
   }
   /* part of every local cell */
   PetscCall(PetscMalloc1(m->cEnd - m->cStart + 1, &m->cellPart));
@@ -584,17 +616,24 @@ PetscErrorCode BoltMeshCellCoordinates(BoltMesh *m, PetscInt c, PetscReal X[24])
 
 PetscErrorCode BoltMeshVertexDofs(BoltMesh *m, PetscInt v, PetscInt idx[3])
 {
-  PetscSection gs;
-  PetscInt     off, dof, cdof;
+  PetscSection    gs, ls;
+  PetscInt        off, cdof, k = 0;
+  const PetscInt *held = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(DMGetGlobalSection(m->dm, &gs));
+  PetscCall(DMGetLocalSection(m->dm, &ls));
   PetscCall(PetscSectionGetOffset(gs, v, &off));
-  PetscCall(PetscSectionGetDof(gs, v, &dof));
-  PetscCall(PetscSectionGetConstraintDof(gs, v, &cdof));
+  PetscCall(PetscSectionGetConstraintDof(ls, v, &cdof));
+  if (cdof) PetscCall(PetscSectionGetConstraintIndices(ls, v, &held));
   if (off < 0) off = -(off + 1);
-  if (dof < 0) dof = -(dof + 1);
-  for (PetscInt d = 0; d < 3; d++) idx[d] = (dof - cdof == 3) ? off + d : -1;
+  /* the global vector keeps a node's free components, in order, from its offset on */
+  for (PetscInt d = 0; d < 3; d++) {
+    PetscBool isHeld = PETSC_FALSE;
+    for (PetscInt j = 0; j < cdof; j++)
+      if (held[j] == d) isHeld = PETSC_TRUE;
+    idx[d] = isHeld ? -1 : off + k++;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -664,12 +703,13 @@ PetscErrorCode BoltMeshFillVertexField(BoltMesh *m, PetscErrorCode (*f)(const Pe
 
     if (PetscBTLookup(m->pointGhost, v - m->pStart)) continue;
     PetscCall(BoltMeshVertexDofs(m, v, idx));
-    if (idx[0] < 0) continue;
+    if (idx[0] < 0 && idx[1] < 0 && idx[2] < 0) continue;
     PetscCall(PetscSectionGetOffset(cs, v, &off));
     for (PetscInt d = 0; d < 3; d++) X[d] = PetscRealPart(x[off + d]);
     PetscCall(f(X, vpart[v - m->vStart], val, ctx));
     for (PetscInt d = 0; d < 3; d++) sv[d] = val[d];
-    PetscCall(VecSetValues(u, 3, idx, sv, INSERT_VALUES));
+    for (PetscInt d = 0; d < 3; d++)
+      if (idx[d] >= 0) PetscCall(VecSetValue(u, idx[d], sv[d], INSERT_VALUES));
   }
   PetscCall(VecRestoreArrayRead(coords, &x));
   PetscCall(VecAssemblyBegin(u));
@@ -685,6 +725,12 @@ PetscErrorCode BoltMeshView(BoltMesh *m, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(m->comm, &size));
   PetscCall(PetscViewerASCIIPrintf(viewer, "Mesh %s: %" PetscInt_FMT " hexahedra, %" PetscInt_FMT " nodes, %" PetscInt_FMT " DOFs (%" PetscInt_FMT " free after clamping '%s'), element %s\n", m->filename, m->ncellsGlobal, m->nverticesGlobal, 3 * m->nverticesGlobal, m->ndofsFree, m->clamp ? m->clampGroup : "none", m->formulation == HEX8_FULL ? "full" : "incompatible"));
+  if (m->supportGroup[0]) {
+    const char *xyz = "xyz";
+    char        held[4] = {0};
+    for (PetscInt i = 0; i < m->nsupportComponents; i++) held[i] = xyz[m->supportComponents[i]];
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  support: the nodes of '%s' held in %s\n", m->supportGroup, held));
+  }
   if (size > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "  partitioner %s on %d ranks: edge cut %" PetscInt_FMT " faces\n", m->partitioner, size, m->edgeCut));
   for (PetscInt p = 0; p < m->nparts; p++) {
     const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];

@@ -89,6 +89,7 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscCall(VecDuplicate(nm->q, &nm->rhs));
   PetscCall(VecDuplicate(nm->q, &nm->work));
   PetscCall(PetscCalloc6(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy, nm->nsteps + 1, &nm->slipping, nm->nsteps + 1, &nm->dissipated, BOLT_LEDGER * (nm->nsteps + 1), &nm->ledger));
+  PetscCall(PetscCalloc1(BOLT_PAIR_FORCE * op->contact->npairs * (nm->nsteps + 1) + 1, &nm->pairForce));
   PetscCall(VecDuplicate(nm->q, &nm->dq));
   for (PetscInt i = 0; i < 8; i++) PetscCall(VecDuplicate(nm->q, BoltNewmarkProductVec(nm, i)));
   if (nm->snapshotEvery > 0) {
@@ -282,6 +283,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscCall(BoltNewmarkProductsFresh(nm));
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0], &ek, &es));
   PetscCall(BoltNewmarkLedger(nm, 0, 0, 0, ek, es));
+  if (op->contact->npairs) PetscCall(BoltContactStatePairForces(op->state, nm->pairForce));
   if (op->state->law.friction) { /* the pairs the preload left slipping */
     PetscInt nslip;
     PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
@@ -328,6 +330,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n], &ek, &es));
     PetscCall(VecWAXPY(nm->dq, -1.0, qOld, nm->q));
     PetscCall(BoltNewmarkLedger(nm, n, BoltLoadAmplitude(nm, t - nm->dt), amp, ek, es));
+    if (op->contact->npairs) PetscCall(BoltContactStatePairForces(op->state, &nm->pairForce[BOLT_PAIR_FORCE * op->contact->npairs * n]));
     if (op->state->law.friction) {
       PetscInt nslip;
       PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
@@ -386,6 +389,7 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   PetscCall(VecDestroy(&nm->rhs));
   PetscCall(VecDestroy(&nm->work));
   PetscCall(PetscFree6(nm->probeTime, nm->probeValue, nm->energy, nm->slipping, nm->dissipated, nm->ledger));
+  PetscCall(PetscFree(nm->pairForce));
   PetscCall(VecDestroy(&nm->dq));
   for (PetscInt i = 0; i < 8; i++) PetscCall(VecDestroy(BoltNewmarkProductVec(nm, i)));
   if (nm->snap) PetscCall(VecDestroyVecs(nm->nsteps / nm->snapshotEvery + 1, &nm->snap));

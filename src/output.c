@@ -353,26 +353,51 @@ PetscErrorCode BoltOutputContactState(BoltOutput *out, BoltMesh *m, BoltContactS
   PetscFunctionReturn(0);
 }
 
-/* A time series known on every rank (e.g. a probe history), written once from rank 0. */
-PetscErrorCode BoltOutputSeries(BoltOutput *out, const char group[], const char name[], PetscInt n, const PetscReal values[])
+/* A table of n rows of bs values known on every rank, row i column k at values[stride i + k],
+   written once from rank 0: an (n) dataset if bs is 1, else (n, bs). */
+static PetscErrorCode BoltOutputTable(BoltOutput *out, const char group[], const char name[], PetscInt n, PetscInt bs, PetscInt stride, const PetscReal values[])
 {
   Vec         w;
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(out->comm, &rank));
-  PetscCall(VecCreateMPI(out->comm, rank == 0 ? n : 0, n, &w));
+  PetscCall(VecCreate(out->comm, &w));
+  PetscCall(VecSetSizes(w, rank == 0 ? bs * n : 0, bs * n));
+  PetscCall(VecSetBlockSize(w, bs));
+  PetscCall(VecSetType(w, VECMPI));
   PetscCall(PetscObjectSetName((PetscObject)w, name));
   if (rank == 0) {
     PetscScalar *a;
     PetscCall(VecGetArray(w, &a));
-    for (PetscInt i = 0; i < n; i++) a[i] = values[i];
+    for (PetscInt i = 0; i < n; i++)
+      for (PetscInt k = 0; k < bs; k++) a[bs * i + k] = values[stride * i + k];
     PetscCall(VecRestoreArray(w, &a));
   }
   PetscCall(PetscViewerHDF5PushGroup(out->viewer, group));
   PetscCall(VecView(w, out->viewer));
   PetscCall(PetscViewerHDF5PopGroup(out->viewer));
   PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
+/* A time series known on every rank (e.g. a probe history), written once from rank 0. */
+PetscErrorCode BoltOutputSeries(BoltOutput *out, const char group[], const char name[], PetscInt n, const PetscReal values[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltOutputTable(out, group, name, n, 1, 1, values));
+  PetscFunctionReturn(0);
+}
+
+/* The pair-force history of a run (n steps of BoltContactStatePairForces) as <group>/pair_force/
+   <pair name>, an (n, 4) dataset per pair: the force on side b (x, y, z) and the normal force [N]. */
+PetscErrorCode BoltOutputPairForces(BoltOutput *out, const char group[], BoltContactSet *c, PetscInt n, const PetscReal values[])
+{
+  char sub[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(sub, sizeof(sub), "%s/pair_force", group));
+  for (PetscInt p = 0; p < c->npairs; p++) PetscCall(BoltOutputTable(out, sub, c->pairName[p], n, BOLT_PAIR_FORCE, BOLT_PAIR_FORCE * c->npairs, &values[BOLT_PAIR_FORCE * p]));
   PetscFunctionReturn(0);
 }
 

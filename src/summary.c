@@ -298,6 +298,7 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
       const char *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
       for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(&h5, "/fom/energy_accounting", rows[r], fom->nsteps + 1, &fom->ledger[r * (fom->nsteps + 1)]));
     }
+    PetscCall(BoltOutputPairForces(&h5, "/fom", fom->op->contact, fom->nsteps + 1, fom->pairForce));
     if (fom->op->state->law.friction) {
       PetscCall(BoltOutputSeries(&h5, "/fom", "slipping", fom->nsteps + 1, fom->slipping));
       PetscCall(BoltOutputSeries(&h5, "/fom", "dissipated", fom->nsteps + 1, fom->dissipated));
@@ -316,6 +317,7 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
       const char *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
       for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(&h5, "/rom/energy_accounting", rows[r], rom->nsteps + 1, &rom->ledger[r * (rom->nsteps + 1)]));
     }
+    PetscCall(BoltOutputPairForces(&h5, "/rom", rom->op->contact, rom->nsteps + 1, rom->pairForce));
     if (rom->op->state->law.friction) {
       PetscCall(BoltOutputSeries(&h5, "/rom", "slipping", rom->nsteps + 1, rom->slipping));
       PetscCall(BoltOutputSeries(&h5, "/rom", "dissipated", rom->nsteps + 1, rom->dissipated));

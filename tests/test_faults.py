@@ -124,7 +124,8 @@ def test_killed_run_leaves_previous_results(joint_small, tmp_path):
         assert (out / name).read_bytes() == data, name
     with h5py.File(out / "paper-step-fom.ckpt.h5") as f:
         step = int(f["/checkpoint/history"].attrs["step"])
-        assert step >= 20 and step % 5 == 0 and len(f["/checkpoint/history"]) == 15 + 11 * (step + 1)
+        # 15 counters, then per step 11 histories and the 5 pairs' forces (4 each)
+        assert step >= 20 and step % 5 == 0 and len(f["/checkpoint/history"]) == 15 + (11 + 4 * 5) * (step + 1)
     p = run_boltrom(longer[:-1] + ["-restart"])
     assert f"restarted from {out / 'paper-step-fom.ckpt.h5'} at step {step}" in p.stdout
     with h5py.File(out / "paper-step.h5") as f:

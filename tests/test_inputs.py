@@ -200,6 +200,21 @@ def test_load_on_clamped_nodes(beam, tmp_path):
     expect_error(["-mesh", beam, "-load_group", "clamp"], tmp_path, "'clamp'", "clamped", "-load_group")
 
 
+@pytest.mark.parametrize("args, words", [
+    (["-support_group", "grip"], ["'grip'", "-support_group"]),
+    (["-support_group", "load_point", "-support_components", "1,3"], ["-support_components", "3", "0, 1, 2"]),
+    (["-support_group", "contact_plate2_plate1_a"], ["plate2_plate1", "'contact_plate2_plate1_a'", "off the contact surfaces"]),
+    (["-support_group", "load_point", "-support_components", "0"], ["Probe group", "support group 'load_point'", "-probe_component"]),
+])
+def test_bad_support(joint_small, tmp_path, args, words):
+    """-support_group holds a group's nodes in some components: a group the mesh lacks, a
+    component that is not x, y or z, a group on a contact surface (a contact node is held whole
+    or not at all) and a probe in a held component are refused before anything is written."""
+    mesh, _ = joint_small
+    expect_error(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-fom", "-probe_component", "0"] + args,
+                 tmp_path, *words)
+
+
 def test_probe_on_clamped_node(beam, tmp_path):
     expect_error(["-mesh", beam, "-load_group", "tip", "-probe_group", "clamp"], tmp_path, "Probe group 'clamp'", "clamped", "-probe_group")
 
