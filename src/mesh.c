@@ -38,7 +38,7 @@ PetscErrorCode BoltMeshSetFromOptions(BoltMesh *m)
   {
     PetscInt  comp[3] = {1, 2, 0}, ncomp = 3;
     PetscBool cset;
-    PetscCall(PetscOptionsIntArray("-support_components", "Components held at -support_group, 0 x, 1 y, 2 z, comma separated", NULL, comp, &ncomp, &cset));
+    PetscCall(PetscOptionsIntArray("-support_components", "Components held at -support_group, 0 x, 1 y, 2 z, comma separated (default 1,2: y and z)", NULL, comp, &ncomp, &cset));
     if (!cset) ncomp = 2;
     PetscCheck(ncomp >= 1, m->comm, PETSC_ERR_USER_INPUT, "-support_components needs at least one of 0, 1, 2 (x, y, z)");
     PetscCall(PetscSortRemoveDupsInt(&ncomp, comp));

@@ -80,3 +80,47 @@ def test_preloaded_contact(crosscheck):
             assert ch["ok"], ch
     # the load pushes the free end down, by about the tied joint's deflection
     assert 0.9 < c["uz_load"] / res["tied"]["incompatible"]["ccx"]["uz"] < 1.1
+
+
+@pytest.fixture(scope="module")
+def friction(joint_small, tmp_path_factory):
+    """The axial load with Coulomb friction (mu 0.1) in 8 increments to 2.4 kN, the load point
+    held in y and z in both codes (the lap joint's secondary bending held, so that both solve
+    the same small-rotation problem: docs/verification.md section 9)."""
+    if shutil.which("ccx") is None:
+        pytest.skip("CalculiX not found: ccx is not on PATH (scripts/install-deps installs calculix-ccx)")
+    mesh, _ = joint_small
+    work = tmp_path_factory.mktemp("ccx-friction")
+    out = work / "crosscheck.json"
+    # level 0.5 measured 3.4 % at most before macro-slip; the acceptance figure, 2 %, is level 1's
+    cmd = [PYTHON, str(ROOT / "scripts" / "ccx-crosscheck"), "--level", "0.5", "--mesh", str(mesh), "--ranks", "2",
+           "--workdir", str(work), "--json", str(out), "--only", "friction", "--friction-support", "--tol-friction", "0.04"]
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT, timeout=900)
+    assert out.exists(), f"ccx-crosscheck wrote no JSON ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}"
+    return proc, json.loads(out.read_text())["friction"]
+
+
+def test_friction_curve_before_macro_slip(friction):
+    """u_x due to the load within 4 % of ccx's at every increment before ccx's plate interface
+    slides as a whole, which both codes reach at the same increment (2.1 kN: the shear at 0.98 of
+    mu times the normal force), near mu times the 20 kN clamp."""
+    proc, fr = friction
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert fr["support"] and fr["macro_slip_load"] == pytest.approx(2100.0)
+    onset = [r for r in fr["curve"] if r["load"] == fr["macro_slip_load"]][0]
+    assert onset["plate"]["boltrom_ratio"] >= 0.98
+    before = [r for r in fr["curve"][1:] if r["load"] < fr["macro_slip_load"]]
+    assert len(before) == 6 and max(r["rel"] for r in before) <= 0.04
+    assert all(r["plate"]["boltrom_ratio"] < 0.98 for r in before)
+
+
+def test_friction_interface_forces_agree(friction):
+    """The force the plate interface transmits: the two codes within 2 % of each other at every
+    increment before macro-slip (measured 1.4 %), the clamp within 1.5 % (1.3 %; ccx's drops by
+    1 % at the load's first increment)."""
+    _, fr = friction
+    for r in fr["curve"][1:]:
+        if r["load"] < fr["macro_slip_load"]:
+            p = r["plate"]
+            assert p["boltrom_shear"] == pytest.approx(p["ccx_shear"], rel=0.02), r["load"]
+            assert p["boltrom_normal"] == pytest.approx(p["ccx_normal"], rel=0.015), r["load"]
