@@ -97,14 +97,23 @@ def friction(joint_small, tmp_path_factory):
            "--workdir", str(work), "--json", str(out), "--only", "friction", "--friction-support", "--tol-friction", "0.04"]
     proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT, timeout=900)
     assert out.exists(), f"ccx-crosscheck wrote no JSON ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}"
-    return proc, json.loads(out.read_text())["friction"]
+    return proc, json.loads(out.read_text())["friction"], out
+
+
+def test_friction_plot(friction, tmp_path):
+    """python/plot_ccx_friction.py draws the run's JSON (the figure of docs/verification.md)."""
+    *_, out = friction
+    png = tmp_path / "friction.png"
+    subprocess.run([PYTHON, str(ROOT / "python" / "plot_ccx_friction.py"), str(png), str(out)], check=True,
+                   capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20000
 
 
 def test_friction_curve_before_macro_slip(friction):
     """u_x due to the load within 4 % of ccx's at every increment before ccx's plate interface
     slides as a whole, which both codes reach at the same increment (2.1 kN: the shear at 0.98 of
     mu times the normal force), near mu times the 20 kN clamp."""
-    proc, fr = friction
+    proc, fr, _ = friction
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert fr["support"] and fr["macro_slip_load"] == pytest.approx(2100.0)
     onset = [r for r in fr["curve"] if r["load"] == fr["macro_slip_load"]][0]
@@ -118,7 +127,7 @@ def test_friction_interface_forces_agree(friction):
     """The force the plate interface transmits: the two codes within 2 % of each other at every
     increment before macro-slip (measured 1.4 %), the clamp within 1.5 % (1.3 %; ccx's drops by
     1 % at the load's first increment)."""
-    _, fr = friction
+    _, fr, _ = friction
     for r in fr["curve"][1:]:
         if r["load"] < fr["macro_slip_load"]:
             p = r["plate"]
