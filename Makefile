@@ -131,6 +131,14 @@ friction: deps all
 	$(PYTHON) scripts/friction-scenes --direction z --rom --rom-train 1000 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 3 --amplitudes 10 30 100 300 1000 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --level 1 --np 2 --rom --rom-train 300 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 8 --amplitudes 30 100 --ringdown --results
 
+# The axial load with friction against CalculiX at level 1, the load point held (16 increments)
+# and free (8), their JSON in docs/data/ and docs/ccx-friction-L1.png (docs/verification.md
+# section 9; about 35 min, most of it ccx's).
+ccx-friction: deps all
+	$(PYTHON) scripts/ccx-crosscheck --level 1 --only friction --ranks $(NP) --friction-support --friction-steps 16 --workdir output/ccx-L1-held --json docs/data/ccx-friction-L1-held.json
+	$(PYTHON) scripts/ccx-crosscheck --level 1 --only friction --ranks $(NP) --workdir output/ccx-L1-free --json docs/data/ccx-friction-L1-free.json
+	$(PYTHON) python/plot_ccx_friction.py docs/ccx-friction-L1.png docs/data/ccx-friction-L1-held.json docs/data/ccx-friction-L1-free.json
+
 # Verification figures quoted in the README (cantilever, joint over levels, partitioners).
 verify: deps all
 	$(PYTHON) scripts/verify-model --levels 1 2 3 --np $(NP)
@@ -145,5 +153,5 @@ options: deps all
 clean:
 	rm -rf build bin
 
-.PHONY: all deps run test mesh clean tests-c verify bench stress stress-strict paper options friction
+.PHONY: all deps run test mesh clean tests-c verify bench stress stress-strict paper options friction ccx-friction
 endif
