@@ -149,7 +149,7 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
   {
     PetscReal nrm;
     PetscCall(VecNorm(l->loadUnit, NORM_INFINITY, &nrm));
-    PetscCheck(nrm > 0, m->comm, PETSC_ERR_USER_INPUT, "Load group '%s' lies entirely on clamped nodes (group '%s'): its force would act on nothing; choose a group on a free part with -load_group", l->loadGroup, m->clamp ? m->clampGroup : "none");
+    PetscCheck(nrm > 0, m->comm, PETSC_ERR_USER_INPUT, "Load group '%s' lies entirely on clamped nodes (group '%s'%s%s%s), or along held components: its force would act on nothing; choose a group on a free part with -load_group", l->loadGroup, m->clamp ? m->clampGroup : "none", m->supportGroup[0] ? ", support group '" : "", m->supportGroup, m->supportGroup[0] ? "'" : "");
   }
   PetscCall(VecAXPY(l->load, l->loadForce, l->loadUnit));
   PetscCall(PetscFree(faces));
