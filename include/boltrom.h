@@ -78,6 +78,7 @@ PetscErrorCode BoltMeshCellCoordinates(BoltMesh *, PetscInt, PetscReal[24]);
 PetscErrorCode BoltMeshCellDofs(BoltMesh *, PetscInt, PetscInt[24]);
 PetscErrorCode BoltMeshCellVertices(BoltMesh *, PetscInt, PetscInt[8]);
 PetscErrorCode BoltMeshVertexDofs(BoltMesh *, PetscInt, PetscInt[3]);
+PetscErrorCode BoltMeshSetNodeValues(Vec, const PetscInt[3], const PetscScalar[3], InsertMode);
 PetscErrorCode BoltMeshDofKeys(BoltMesh *, Vec, Vec *);
 PetscErrorCode BoltMeshVertexOwned(BoltMesh *, PetscInt, PetscBool *);
 PetscErrorCode BoltMeshGroupPoints(BoltMesh *, const char[], PetscBool, PetscInt *, PetscInt **);

@@ -52,16 +52,6 @@ PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *l)
   PetscFunctionReturn(0);
 }
 
-/* Adds a node's three values to f at its free components (idx -1 where clamped or supported:
-   VecSetValues would write before the array, unchecked in an optimised PETSc). */
-static PetscErrorCode BoltVecAddNode(Vec f, const PetscInt idx[3], const PetscScalar v[3])
-{
-  PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < 3; d++)
-    if (idx[d] >= 0) PetscCall(VecSetValue(f, idx[d], v[d], ADD_VALUES));
-  PetscFunctionReturn(0);
-}
-
 /* Equal shares of `force` along `dir` on the owned vertices of a group (a point load when the
    group is one node). Returns the global node count. */
 static PetscErrorCode BoltLoadSpread(BoltMesh *m, const char group[], const PetscReal dir[3], PetscReal force, Vec f, PetscInt *nglobal)
@@ -77,7 +67,7 @@ static PetscErrorCode BoltLoadSpread(BoltMesh *m, const char group[], const Pets
     PetscScalar v[3];
     PetscCall(BoltMeshVertexDofs(m, verts[i], idx));
     for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] / n;
-    PetscCall(BoltVecAddNode(f, idx, v));
+    PetscCall(BoltMeshSetNodeValues(f, idx, v, ADD_VALUES));
   }
   PetscCall(PetscFree(verts));
   PetscCall(VecAssemblyBegin(f));
@@ -109,7 +99,7 @@ static PetscErrorCode BoltLoadFaces(BoltMesh *m, PetscInt nfaces, const PetscInt
       PetscScalar v[3];
       PetscCall(BoltMeshVertexDofs(m, fv[4 * i + a], idx));
       for (PetscInt d = 0; d < 3; d++) v[d] = force * dir[d] * area[i] / (4 * aglob);
-      PetscCall(BoltVecAddNode(f, idx, v));
+      PetscCall(BoltMeshSetNodeValues(f, idx, v, ADD_VALUES));
     }
   PetscCall(VecAssemblyBegin(f));
   PetscCall(VecAssemblyEnd(f));

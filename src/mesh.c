@@ -637,6 +637,17 @@ PetscErrorCode BoltMeshVertexDofs(BoltMesh *m, PetscInt v, PetscInt idx[3])
   PetscFunctionReturn(0);
 }
 
+/* Sets or adds a node's three values at its free components (idx from BoltMeshVertexDofs, -1
+   where clamped or supported: VecSetValues would write before the array, unchecked in an
+   optimised PETSc). */
+PetscErrorCode BoltMeshSetNodeValues(Vec f, const PetscInt idx[3], const PetscScalar v[3], InsertMode mode)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < 3; d++)
+    if (idx[d] >= 0) PetscCall(VecSetValue(f, idx[d], v[d], mode));
+  PetscFunctionReturn(0);
+}
+
 /* A key for every owned DOF that does not depend on the partition or the number of ranks:
    3 x (the vertex's point number in the mesh as read) + component. Files that hold rows at
    chosen DOFs (the ROM file) are indexed by it, so that any rank count can read them. */
@@ -708,8 +719,7 @@ PetscErrorCode BoltMeshFillVertexField(BoltMesh *m, PetscErrorCode (*f)(const Pe
     for (PetscInt d = 0; d < 3; d++) X[d] = PetscRealPart(x[off + d]);
     PetscCall(f(X, vpart[v - m->vStart], val, ctx));
     for (PetscInt d = 0; d < 3; d++) sv[d] = val[d];
-    for (PetscInt d = 0; d < 3; d++)
-      if (idx[d] >= 0) PetscCall(VecSetValue(u, idx[d], sv[d], INSERT_VALUES));
+    PetscCall(BoltMeshSetNodeValues(u, idx, sv, INSERT_VALUES));
   }
   PetscCall(VecRestoreArrayRead(coords, &x));
   PetscCall(VecAssemblyBegin(u));
