@@ -23,11 +23,12 @@ all bin/boltrom run test bench mesh tests-c verify stress stress-strict paper op
 else
 include $(SLEPC_VARS)
 
-LIB_SRC  := $(filter-out src/main.c,$(wildcard src/*.c))
+# sources by concern, one folder each (src/sys, model, contact, solve, rom, app): found recursively
+LIB_SRC  := $(filter-out src/app/main.c,$(shell find src -name '*.c' | sort))
 LIB_OBJ  := $(patsubst src/%.c,build/%.o,$(LIB_SRC))
 TEST_SRC := $(wildcard tests/c/*.c)
 TEST_BIN := $(patsubst tests/c/%.c,bin/%,$(TEST_SRC))
-HEADERS  := $(wildcard include/*.h)
+HEADERS  := $(shell find include -name '*.h')
 
 WARN     := -Wall -Wextra -Wno-unused-parameter -Werror=implicit-function-declaration -Werror=implicit-int -Werror=return-type
 CFLAGS_B := -O2 -g $(WARN) -Iinclude $(SLEPC_CC_INCLUDES)
@@ -39,17 +40,17 @@ all: bin/boltrom $(TEST_BIN)
 # the reduced model's per-element loops: vectorised (the cheap default declines loops of
 # unknown length); vectorising independent lanes does not change a result's bits, nor does a
 # wider vector while no multiply and add are contracted into one FMA
-build/exact_sum.o build/rom.o: CFLAGS_B += -fvect-cost-model=dynamic -ffp-contract=off
+build/sys/exact_sum.o build/rom/rom.o: CFLAGS_B += -fvect-cost-model=dynamic -ffp-contract=off
 
 build/%.o: src/%.c $(HEADERS)
-	@mkdir -p build
+	@mkdir -p $(dir $@)
 	@echo "  CC  $<"
 	@$(PCC) $(CFLAGS_B) -c $< -o $@
 
 build/libboltrom.a: $(LIB_OBJ)
 	@ar rcs $@ $^
 
-bin/boltrom: src/main.c build/libboltrom.a $(HEADERS)
+bin/boltrom: src/app/main.c build/libboltrom.a $(HEADERS)
 	@mkdir -p bin
 	@echo "  LD  $@"
 	@$(PCC) $(CFLAGS_B) $< build/libboltrom.a -o $@ $(LDLIBS_B)

@@ -1,4 +1,4 @@
-static char help[] = "Verification of BoltExactSum (src/exact_sum.c): sums of terms of mixed signs and\n"
+static char help[] = "Verification of BoltExactSum (src/sys/exact_sum.c): sums of terms of mixed signs and\n"
                      "magnitudes, with heavy cancellation, split over the ranks in a round-robin and summed\n"
                      "in reverse order, must give the same bits as one rank summing them all in order, and\n"
                      "be correctly rounded up to 1e-20 of the terms' bound (the plain double sum's error is printed).\n"
