@@ -48,7 +48,7 @@ build/%.o: src/%.c $(HEADERS)
 	@$(PCC) $(CFLAGS_B) -c $< -o $@
 
 build/libboltrom.a: $(LIB_OBJ)
-	@ar rcs $@ $^
+	@rm -f $@ && ar rcs $@ $^
 
 bin/boltrom: src/app/main.c build/libboltrom.a $(HEADERS)
 	@mkdir -p bin
