@@ -40,7 +40,7 @@ all: bin/boltrom $(TEST_BIN)
 # the reduced model's per-element loops: vectorised (the cheap default declines loops of
 # unknown length); vectorising independent lanes does not change a result's bits, nor does a
 # wider vector while no multiply and add are contracted into one FMA
-build/sys/exact_sum.o build/rom/rom.o: CFLAGS_B += -fvect-cost-model=dynamic -ffp-contract=off
+build/sys/exact_sum.o $(patsubst src/%.c,build/%.o,$(wildcard src/rom/rom*.c)): CFLAGS_B += -fvect-cost-model=dynamic -ffp-contract=off
 
 build/%.o: src/%.c $(HEADERS)
 	@mkdir -p $(dir $@)

@@ -1,0 +1,245 @@
+/* The reduced model's gaps and opening test from rows of the basis at the node pairs (normal
+   rows on flat surfaces), set up once and kept while the contact state holds. */
+#include "private/rom.h"
+#include <petscblaslapack.h>
+
+/* The gaps at the local contact points from rows of node-pair differences D = V_b - V_a (a
+   sixth or half of the rows of V_c, and free of the cancellation in u_b - u_a), under the
+   penalty law: there the multipliers do not take the trial traction, so the gaps only feed the
+   decisions and the penalty acts through K_cr. On flat surfaces only the normal part,
+   g = (sum_a N_a n' D_a q) n: the decisions read t.n, where the tangential part cancels to
+   round-off; friction's decisions read the slip too, so there the whole gap. With augmentation
+   (the multipliers take the trial traction): u_c and the set's interpolation, as the full
+   model. */
+PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
+{
+  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltContactSet    *c   = rom->contact;
+  const PetscScalar *x;
+  PetscBool          whole;
+  PetscReal          xmax = 0;
+
+  PetscFunctionBeginUser;
+  if (op->state->augment) {
+    PetscCall(ROMContactDisplacements(op, q));
+    PetscCall(BoltContactSetGapsOf(c, gap));
+    PetscFunctionReturn(0);
+  }
+  if (rom->pairGaps) { /* the owned pairs' gaps (the held ones once), sent to their points */
+    PetscCall(VecGetArrayRead(q, &x));
+    ROMRowsTimes(rom->heldRowsDone && !rom->gapsEverywhere ? 3 * rom->npLive : 3 * rom->npOwned, rom->n, rom->npRows, 3 * rom->npOwned, x, rom->npGap);
+    PetscCall(VecRestoreArrayRead(q, &x));
+    rom->heldRowsDone = PETSC_TRUE;
+    for (PetscInt k = 0; k < rom->npOwned; k++)
+      for (PetscInt i = rom->npSlotStart[k]; i < rom->npSlotStart[k + 1]; i++)
+        for (PetscInt l = 0; l < 3; l++) rom->npSlotF[3 * i + l] = PetscRealPart(rom->npGap[rom->npRowOf[k] + l]);
+    PetscCall(PetscArrayzero(gap, 12 * c->nelem)); /* a point whose nodes are both clamped has no gap */
+    PetscCall(PetscSFBcastBegin(rom->npSF, MPIU_REAL, rom->npSlotF, gap, MPI_REPLACE));
+    PetscCall(PetscSFBcastEnd(rom->npSF, MPIU_REAL, rom->npSlotF, gap, MPI_REPLACE));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecGetArrayRead(q, &x));
+  /* the rows of points that may change; those of held points (their state is kept, so no decision
+     reads their gaps) once, for gaps that stay defined */
+  ROMRowsTimes(rom->heldRowsDone && !rom->gapsEverywhere ? rom->nLiveRows : rom->nGapRows, rom->n, rom->Rn, rom->nGapRows, x, rom->gnRow);
+  rom->heldRowsDone = PETSC_TRUE;
+  whole = (PetscBool)(c->law.strict && c->reanchor && !rom->wholeRows && c->quadrature == BOLT_QUADRATURE_NODAL);
+  for (PetscInt j = 0; j < rom->n && whole; j++) xmax = PetscMax(xmax, PetscAbsReal(PetscRealPart(x[j])));
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+    const PetscInt  *r = &rom->gpRows[4 * gp];
+    const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp]; /* gpN: 4 per point */
+    PetscReal       *g = &gap[3 * gp];
+    if (!rom->wholeRows) {
+      PetscReal gn = 0;
+      if (c->quadrature == BOLT_QUADRATURE_NODAL) gn = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4]]) : 0; /* its own node, weight 1 */
+      else
+        for (PetscInt a = 0; a < 4; a++)
+          if (r[a] >= 0) gn += N[a] * PetscRealPart(rom->gnRow[r[a]]);
+      for (PetscInt k = 0; k < 3; k++) g[k] = gn * n[k];
+      /* an open pair that closes sticks where it closes: its anchor needs the whole gap, from its
+         node pair's rows of D_e in a fixed order (the same bits on any partition). Only where it
+         may close: elsewhere the decision -g.n > activationGap is the same with the normal gap
+         alone, whose rounding differs from the whole gap's by less than the bound. */
+      if (whole && !op->state->active[gp] && (rom->gapsEverywhere || ((!op->state->mayChange || op->state->mayChange[gp]) && -gn > op->state->activationGap - rom->wholeGapBound[gp] * xmax))) {
+        PetscScalar whole3[3];
+        ROMRowsTimes(3, rom->n, &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)], 12, x, whole3);
+        for (PetscInt k = 0; k < 3; k++) g[k] = PetscRealPart(whole3[k]);
+      }
+    } else if (c->quadrature == BOLT_QUADRATURE_NODAL) /* its own node, weight 1 */
+      for (PetscInt k = 0; k < 3; k++) g[k] = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4] + k]) : 0;
+    else
+      for (PetscInt k = 0; k < 3; k++) {
+        PetscReal v = 0;
+        for (PetscInt a = 0; a < 4; a++)
+          if (r[a] >= 0) v += N[a] * PetscRealPart(rom->gnRow[r[a] + k]);
+        g[k] = v;
+      }
+  }
+  PetscCall(VecRestoreArrayRead(q, &x));
+  PetscFunctionReturn(0);
+}
+
+/* The opening test's traction. Under the penalty law the trial traction of a point is affine in
+   its gap, t = lambda + P g, so where the test reads t.n of the point alone, or (nodal quadrature,
+   flat surfaces) of the points of its own node pair, its traction is C + K g.n per point: C the
+   test applied to the multipliers, K to the traction of a unit normal gap. Both change only with
+   the state, and are made again (collectively) when its version moves. */
+PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
+{
+  BoltROM          *rom = (BoltROM *)op->ctx;
+  BoltContactSet   *c   = rom->contact;
+  BoltContactState *s   = op->state;
+  const PetscInt    ngp = 4 * c->nelem;
+
+  PetscFunctionBeginUser;
+  if (s->augment || s->law.friction || (s->openTest == BOLT_OPEN_NODAL && !(c->quadrature == BOLT_QUADRATURE_NODAL && rom->flat))) {
+    PetscCall(BoltContactStateOpenTraction(s, tn));
+    PetscFunctionReturn(0);
+  }
+  if (!rom->tnValid || rom->tnVersion != s->version) {
+    for (PetscInt pass = 0; pass < 2; pass++) {
+      PetscReal *out = pass ? rom->tnK : rom->tnC;
+      for (PetscInt gp = 0; gp < ngp; gp++) {
+        const PetscInt   pair = c->elem[gp / 4].pair;
+        const PetscReal *n    = &c->gpNormal[3 * gp], zero[3] = {0, 0, 0};
+        PetscReal       *t    = &c->tau[3 * gp];
+        if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
+        else if (!pass) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
+        else s->law.traction(zero, n, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+      }
+      if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, out));
+      else
+        for (PetscInt gp = 0; gp < ngp; gp++) {
+          const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
+          out[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+        }
+    }
+    rom->tnVersion = s->version;
+    rom->tnValid   = PETSC_TRUE;
+  }
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
+    tn[gp] = rom->tnC[gp] + rom->tnK[gp] * (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A point's normal rounded to 2^-40: the normals of a flat face's points differ in their last
+   bits; rounded, they are one normal, whichever point of whichever rank makes a row. */
+static void ROMRowNormal(const PetscReal n[3], PetscReal nr[3])
+{
+  for (PetscInt k = 0; k < 3; k++) nr[k] = ldexp(rint(ldexp(n[k], 40)), -40);
+}
+
+/* The gap rows, from the elements' D_e so that a row has the same bits on any partition. Whether
+   the surfaces are flat: at every node the normals of all points around it, over all ranks (the
+   nodal area vector sums them), agree with each point's to 1e-12. On flat surfaces one row n' D
+   per node pair and rounded point normal (one per node pair), else the three rows of D. */
+PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
+{
+  BoltContactSet *c = rom->contact;
+  const PetscInt  n = rom->n, ngp = 4 * c->nelem;
+  PetscInt       *first, *next, *rowGp, *rowNode, *pos, width;
+  PetscBool       flat = PETSC_TRUE, *live;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
+  PetscCall(PetscFree2(rom->Rn, rom->gnRow));
+  PetscCall(PetscMalloc4(4 * ngp + 1, &rom->gpRows, ngp + 1, &rom->tnC, ngp + 1, &rom->tnK, ngp + 1, &rom->wholeGapBound));
+  PetscCall(PetscMalloc4(c->nlocal + 1, &first, 4 * ngp + 1, &next, 4 * ngp + 1, &rowGp, 4 * ngp + 1, &rowNode));
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
+    const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp];
+    for (PetscInt a = 0; a < 4; a++) {
+      const PetscInt *ii = loc[12 + 3 * a] >= 0 ? &loc[12 + 3 * a] : &loc[3 * a]; /* the pair's DOFs on side b, or a */
+      PetscReal       A[3], x[3];
+      if (N[a] == 0 || ii[0] < 0) continue;
+      for (PetscInt k = 0; k < 3; k++) A[k] = c->nodalArea[ii[k]];
+      x[0] = A[1] * n[2] - A[2] * n[1]; /* A x n */
+      x[1] = A[2] * n[0] - A[0] * n[2];
+      x[2] = A[0] * n[1] - A[1] * n[0];
+      if (PetscSqrtReal(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > 1e-12 * PetscSqrtReal(A[0] * A[0] + A[1] * A[1] + A[2] * A[2])) flat = PETSC_FALSE;
+    }
+  }
+  PetscCall(MPIU_Allreduce(&flat, &rom->flat, 1, MPIU_BOOL, MPI_LAND, rom->comm));
+  /* friction reads the tangential gaps too (the augmented ROM takes u_c = V_c q instead) */
+  rom->wholeRows = (PetscBool)(!rom->flat || c->law.friction);
+  width          = rom->wholeRows ? 3 : 1;
+  /* each point's gap is its own node pair's: the pairs' owners make them (ROMSetUpPairForces) */
+  rom->pairGaps = (PetscBool)(rom->wholeRows && c->quadrature == BOLT_QUADRATURE_NODAL && !rom->augment);
+  if (rom->pairGaps) {
+    rom->nGapRows = rom->nLiveRows = 0;
+    rom->heldRowsDone = PETSC_FALSE;
+    PetscCall(PetscMalloc2(1, &rom->Rn, 1, &rom->gnRow));
+    PetscCall(PetscFree4(first, next, rowGp, rowNode));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < c->nlocal; i++) first[i] = -1;
+  rom->nGapRows = 0;
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
+    const PetscReal *N = &c->gpN[4 * gp];
+    PetscReal        n[3];
+    ROMRowNormal(&c->gpNormal[3 * gp], n);
+    for (PetscInt a = 0; a < 4; a++) {
+      const PetscInt slot = loc[12 + 3 * a] >= 0 ? loc[12 + 3 * a] : loc[3 * a]; /* the pair's first DOF on side b, or a */
+      PetscInt       r;
+      rom->gpRows[4 * gp + a] = -1;
+      PetscCheck(c->quadrature != BOLT_QUADRATURE_NODAL || N[a] == (a == gp % 4 ? 1.0 : 0.0), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Nodal quadrature: point %" PetscInt_FMT " is not at its own node", gp);
+      if (N[a] == 0 || slot < 0) continue; /* no weight, or both sides clamped: no gap */
+      for (r = first[slot]; r >= 0; r = next[r]) {
+        PetscReal m[3];
+        ROMRowNormal(&c->gpNormal[3 * rowGp[r]], m);
+        if (rom->wholeRows || (m[0] == n[0] && m[1] == n[1] && m[2] == n[2])) break;
+      }
+      if (r < 0) {
+        r = rom->nGapRows;
+        rom->nGapRows += width;
+        next[r]     = first[slot];
+        first[slot] = r;
+        rowGp[r]    = gp;
+        rowNode[r]  = a;
+      }
+      rom->gpRows[4 * gp + a] = r;
+    }
+  }
+  /* the rows of node pairs with a point that may change first (live), then the held ones */
+  PetscCall(PetscCalloc2(rom->nGapRows + 1, &live, rom->nGapRows + 1, &pos));
+  for (PetscInt gp = 0; gp < ngp; gp++)
+    for (PetscInt a = 0; a < 4; a++)
+      if (rom->gpRows[4 * gp + a] >= 0 && (!mayChange || mayChange[gp])) live[rom->gpRows[4 * gp + a]] = PETSC_TRUE;
+  rom->nLiveRows = 0;
+  for (PetscInt pass = 0, k = 0; pass < 2; pass++)
+    for (PetscInt r = 0; r < rom->nGapRows; r += width) {
+      if (live[r] != (pass == 0)) continue;
+      pos[r] = k;
+      k += width;
+      if (!pass) rom->nLiveRows = k;
+    }
+  for (PetscInt i = 0; i < 4 * ngp; i++)
+    if (rom->gpRows[i] >= 0) rom->gpRows[i] = pos[rom->gpRows[i]];
+  rom->heldRowsDone = PETSC_FALSE;
+  /* |n' D x - nr' D x| and the two sums' rounding stay below 1e-12 sum_jk |D_kj| |x|_max (n up to
+     a few thousand); 1e-9 leaves room */
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscReal *D = &rom->De[12 * n * (gp / 4) + 3 * (gp % 4)];
+    PetscReal        b = 0;
+    for (PetscInt j = 0; j < n; j++) b += PetscAbsReal(D[12 * j]) + PetscAbsReal(D[12 * j + 1]) + PetscAbsReal(D[12 * j + 2]);
+    rom->wholeGapBound[gp] = 1e-9 * b;
+  }
+  PetscCall(PetscMalloc2(rom->nGapRows * n + 1, &rom->Rn, rom->nGapRows + 1, &rom->gnRow));
+  for (PetscInt i = 0; i < c->nlocal; i++)
+    for (PetscInt r = first[i]; r >= 0; r = next[r]) {
+      const PetscReal *D = &rom->De[12 * n * (rowGp[r] / 4) + 3 * rowNode[r]];
+      PetscReal        nr[3];
+      ROMRowNormal(&c->gpNormal[3 * rowGp[r]], nr);
+      for (PetscInt j = 0; j < n; j++) {
+        if (!rom->wholeRows) rom->Rn[pos[r] + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
+        else
+          for (PetscInt k = 0; k < 3; k++) rom->Rn[pos[r] + k + rom->nGapRows * j] = D[12 * j + k];
+      }
+    }
+  PetscCall(PetscFree4(first, next, rowGp, rowNode));
+  PetscCall(PetscFree2(live, pos));
+  PetscFunctionReturn(0);
+}
