@@ -19,4 +19,15 @@ PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[]);
 PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F);
 PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[]);
 PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[]);
+PetscErrorCode BoltNodePairsDirected(BoltContactSet *c, const PetscBool mask[], PetscInt nd, const PetscReal pointDir[], PetscInt *npairsOut, PetscInt **pairsOut, PetscReal **dirOut);
+PetscErrorCode BoltNodePairs(BoltContactSet *c, const PetscBool mask[], PetscInt *npairsOut, PetscInt **pairsOut);
+PetscErrorCode BoltNodePairsCombination(PetscInt npair, const PetscInt pairs[], const PetscReal dirs[], PetscInt stride, const PetscReal coef[], Vec v);
+PetscErrorCode BoltNodePairVectorAlong(PetscInt a, PetscInt b, const PetscReal dir[3], Vec v);
+PetscErrorCode BoltNodePairVector(PetscInt a, PetscInt b, PetscInt d, Vec v);
+PetscErrorCode BoltNodePairPatterns(MPI_Comm comm, PetscInt npair, const PetscInt pairs[], const PetscReal dirs[], PetscInt stride, PetscInt nsnap, Vec snap[], PetscInt kmax, PetscInt *kout, PetscReal **patterns);
+PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscBool keepActive, PetscReal openingScale, PetscInt nOpenKrylov, const BoltPreloadState *shared, PetscInt nsnap, Vec snap[], PetscInt *nextra, Vec **extrap, Vec *preload);
+PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom);
+PetscBool BoltROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact);
+PetscErrorCode ROMResolveSettings(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscBool *staticShapesOut, PetscReal *staticPenaltyScaleOut);
+PetscErrorCode ROMReuseFile(BoltReductionOptions *o, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscLogDouble t0, BoltROM **romp);
 #endif
