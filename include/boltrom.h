@@ -548,6 +548,20 @@ PetscErrorCode BoltGatherAll(MPI_Comm, MPI_Datatype, const void *, PetscInt, voi
 PetscErrorCode BoltGrowReal(PetscReal **, PetscInt *, PetscInt);
 
 /* ------------------------------------------------------------------ reduction.c, rom.c */
+/* The ROM file's fingerprint: typed fields, each a setting the basis depends on. */
+#define BOLTROM_FINGERPRINT_FIELDS 256
+typedef struct {
+  char          key[BOLTROM_NAME_LEN + 32];
+  PetscDataType type; /* PETSC_INT, PETSC_REAL or PETSC_STRING */
+  PetscInt      i;
+  PetscReal     r;
+  char          s[BOLTROM_NAME_LEN];
+} BoltROMFingerprintField;
+typedef struct {
+  PetscInt                n;
+  BoltROMFingerprintField field[BOLTROM_FINGERPRINT_FIELDS];
+} BoltROMFingerprint;
+
 /* The reduced model: projected matrices (replicated on every rank, small and dense), the rows
    of the basis at this rank's contact DOFs and at the probe, and the reduced contact stiffness
    kept up to date element by element. */
@@ -597,7 +611,7 @@ typedef struct {
   PetscBool       fromFile;
   PetscBool       augment;       /* contact law of the reduced dual loop */
   PetscReal       orthogonality; /* max |V'V - I|, or -1 if not measured */
-  char            fingerprint[2048];
+  BoltROMFingerprint fingerprint; /* what the basis depends on (src/rom/fingerprint.c) */
   /* the FOM's preloaded state (offline): multipliers per newton of preload and the active set,
      per local contact element; the reduced dual loop starts from them and keeps them frozen */
   PetscBool       preloadState;
@@ -705,9 +719,8 @@ typedef struct {
 PetscErrorCode BoltROMBuild(BoltReductionOptions *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltROM **);
 PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMDestroy(BoltROM **);
-PetscErrorCode BoltROMFingerprint(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscInt, PetscReal, PetscReal, PetscInt, PetscInt, char[], size_t);
-PetscErrorCode BoltROMSave(BoltROM *, BV, BoltAssembler *, BoltLoadSet *, const char[], const char[]);
-PetscErrorCode BoltROMLoad(const char[], const char[], BoltReductionOptions *, BoltContactSet *, BoltLoadSet *, BoltROM **, PetscBool *, char[], size_t);
+PetscErrorCode BoltROMSave(BoltROM *, BV, BoltAssembler *, BoltLoadSet *, const char[]);
+PetscErrorCode BoltROMLoad(const char[], const BoltROMFingerprint *, PetscBool, BoltReductionOptions *, BoltContactSet *, BoltLoadSet *, BoltROM **, PetscBool *, char[], size_t);
 PetscErrorCode BoltROMSetPreloadState(BoltROM *, BoltNewmark *, PetscReal);
 PetscErrorCode BoltROMCheckAtS0(BoltROM *, BoltOperator *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscReal *);
 PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *);

@@ -30,4 +30,10 @@ PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, B
 PetscBool BoltROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact);
 PetscErrorCode ROMResolveSettings(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscBool *staticShapesOut, PetscReal *staticPenaltyScaleOut);
 PetscErrorCode ROMReuseFile(BoltReductionOptions *o, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscLogDouble t0, BoltROM **romp);
+PetscErrorCode BoltROMFingerprintInt(BoltROMFingerprint *, const char[], PetscInt);
+PetscErrorCode BoltROMFingerprintReal(BoltROMFingerprint *, const char[], PetscReal);
+PetscErrorCode BoltROMFingerprintString(BoltROMFingerprint *, const char[], const char[]);
+PetscErrorCode BoltROMFingerprintScene(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscInt, PetscReal, PetscReal, PetscInt, PetscInt, BoltROMFingerprint *);
+PetscErrorCode BoltROMFingerprintWrite(const BoltROMFingerprint *, PetscViewer);
+PetscErrorCode BoltROMFingerprintMatch(const BoltROMFingerprint *, PetscViewer, PetscBool *, char[], size_t);
 #endif

@@ -318,7 +318,7 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   for (PetscInt k = 0; k < rom->order; k++) PetscCall(PetscPrintf(o->comm, " %" PetscInt_FMT, rom->rankPerOrder[k]));
   PetscCall(PetscPrintf(o->comm, "\n"));
   PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
-  if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file, rom->fingerprint));
+  if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file));
   PetscCall(BVDestroy(&V));
   PetscCall(MatDestroy(&C));
   *romp = rom;

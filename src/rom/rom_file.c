@@ -1,62 +1,9 @@
-/* The ROM file (HDF5): everything the online phase needs, and a fingerprint of what the basis
-   depends on (mesh, materials, damping, penalties, reduction options, which loads are inputs;
-   not their amplitudes). A scene with a matching file skips the offline phase; a file that does
+/* The ROM file (HDF5): everything the online phase needs, and the fingerprint of what the basis
+   depends on (fingerprint.c; which loads are inputs, not their amplitudes). A scene with a matching file skips the offline phase; a file that does
    not match is rebuilt or refused, never used silently. Rows of the basis are kept only at the
    contact DOFs and at the point groups (loads, probes). */
-#include "boltrom.h"
+#include "private/rom.h"
 #include <petscviewerhdf5.h>
-
-static PetscErrorCode BoltFileHash(MPI_Comm comm, const char path[], unsigned long long *hash)
-{
-  PetscMPIInt rank;
-
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  *hash = 1469598103934665603ULL; /* FNV-1a */
-  if (rank == 0) {
-    FILE *fp = fopen(path, "rb");
-    int   ch;
-    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot read %s", path);
-    while ((ch = fgetc(fp)) != EOF) *hash = (*hash ^ (unsigned long long)(unsigned char)ch) * 1099511628211ULL;
-    fclose(fp);
-  }
-  PetscCallMPI(MPI_Bcast(hash, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
-  PetscFunctionReturn(0);
-}
-
-/* A readable description of everything the basis depends on, with the version of its recipe
-   ("format": 7 since the load response is forced at 1e-3 of the preload at least); the load is checked apart (a file
-   built for one load may serve another at a point whose rows it keeps, if the user asks). */
-PetscErrorCode BoltROMFingerprint(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, PetscInt order, PetscReal s0, PetscReal defl, PetscInt nCCM, PetscInt nJIM, char fp[], size_t len)
-{
-  BoltMesh          *m = asmb->mesh;
-  unsigned long long h;
-  char               part[64];
-
-  PetscFunctionBeginUser;
-  PetscCall(BoltFileHash(m->comm, m->filename, &h));
-  PetscCall(PetscSNPrintf(fp, len, "format 9; mesh %016llx; element %s; rayleigh %.12g %.12g; order %" PetscInt_FMT "; s0 %.12g; deflation %.3g; ccm %" PetscInt_FMT "; jim %" PetscInt_FMT "; preload %s %s", h, m->formulation == HEX8_FULL ? "full" : "incompatible", (double)asmb->rayleighAlpha, (double)asmb->rayleighBeta, order, (double)s0, (double)defl, nCCM, nJIM, loads->preloadGroup[0], loads->preloadGroup[1]));
-  for (PetscInt p = 0; p < m->nparts; p++) {
-    const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
-    PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g %.6g %.6g", m->partName[p], (double)mat->E, (double)mat->nu, (double)mat->rho));
-    PetscCall(PetscStrlcat(fp, part, len));
-  }
-  for (PetscInt p = 0; p < c->npairs; p++) {
-    PetscCall(PetscSNPrintf(part, sizeof(part), "; %s %.6g", c->pairName[p], (double)c->epsN[p]));
-    PetscCall(PetscStrlcat(fp, part, len));
-  }
-  {
-    /* the preloaded state is per contact point: a file of another law or quadrature does not
-       fit (the paper's stick law with Gauss points, named by nothing, keeps its older files) */
-    PetscBool stick;
-    PetscCall(PetscStrcmp(c->lawType, "stick", &stick));
-    if (!stick || c->quadrature != BOLT_QUADRATURE_GAUSS) {
-      PetscCall(PetscSNPrintf(part, sizeof(part), "; contact law %s, %s quadrature%s", c->lawType, c->quadrature == BOLT_QUADRATURE_NODAL ? "nodal" : "gauss", c->law.strict && c->reanchor ? ", re-closing pairs stick" : ""));
-      PetscCall(PetscStrlcat(fp, part, len));
-    }
-  }
-  PetscFunctionReturn(0);
-}
 
 /* Owned contact DOFs (every DOF of a contact element, whichever rank keeps the element). */
 static PetscErrorCode BoltOwnedContactDofs(BoltContactSet *c, Vec layout, PetscInt *n, PetscInt **dofs)
@@ -197,7 +144,7 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet *loads, const char file[], const char fingerprint[])
+PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet *loads, const char file[])
 {
   MPI_Comm     comm = rom->comm;
   BoltMesh    *m    = asmb->mesh;
@@ -307,7 +254,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   }
   if (rom->preloadState) PetscCall(BoltROMSavePreloadState(rom, v));
   PetscCall(PetscViewerHDF5PopGroup(v));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "fingerprint", PETSC_STRING, fingerprint));
+  PetscCall(BoltROMFingerprintWrite(&rom->fingerprint, v));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, groups));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "input_load", PETSC_STRING, loads->loadGroup));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "dimension", PETSC_INT, &n));
@@ -328,35 +275,78 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscFunctionReturn(0);
 }
 
+/* The file's rows of the basis at this rank's contact DOFs (keyed by DOF keys that name a DOF
+   on any partition) into rom->Vc. */
+static PetscErrorCode ROMLoadContactRows(BoltROM *rom, BoltContactSet *c, BoltLoadSet *loads, PetscViewer v, const char file[])
+{
+  Vec          w;
+  PetscInt     ncd, n = rom->n;
+  PetscScalar *a, *Vc, *cdofs;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(PETSC_COMM_SELF, &w));
+  PetscCall(PetscObjectSetName((PetscObject)w, "contact_dof_keys"));
+  PetscCall(VecLoad(w, v));
+  PetscCall(VecGetSize(w, &ncd));
+  PetscCall(PetscMalloc2(ncd + 1, &cdofs, ncd * n + 1, &Vc));
+  PetscCall(VecGetArray(w, &a));
+  PetscCall(PetscArraycpy(cdofs, a, ncd));
+  PetscCall(VecRestoreArray(w, &a));
+  PetscCall(VecDestroy(&w));
+  PetscCall(BoltReadArray(v, "Vc", ncd, n, Vc));
+  {
+    /* the file's rows are keyed by partition-independent DOF keys: find ours among them */
+    Vec                keys, ckeys;
+    const PetscScalar *k;
+    PetscInt          *fileKey, *perm;
+    PetscCall(PetscMalloc2(ncd + 1, &fileKey, ncd + 1, &perm));
+    for (PetscInt i = 0; i < ncd; i++) {
+      fileKey[i] = (PetscInt)PetscRealPart(cdofs[i]);
+      perm[i]    = i;
+    }
+    PetscCall(PetscSortIntWithArray(ncd, fileKey, perm));
+    PetscCall(BoltMeshDofKeys(c->mesh, loads->load, &keys));
+    PetscCall(VecDuplicate(c->uc, &ckeys));
+    PetscCall(VecScatterBegin(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(PetscCalloc1(c->nlocal * n + 1, &rom->Vc));
+    PetscCall(VecGetArrayRead(ckeys, &k));
+    for (PetscInt i = 0; i < c->nlocal; i++) {
+      PetscInt key = (PetscInt)PetscRealPart(k[i]), loc;
+      PetscCall(PetscFindInt(key, ncd, fileKey, &loc));
+      PetscCheck(loc >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT " (key %" PetscInt_FMT "): rebuild it with -rom_rebuild", file, c->localGlobal[i], key);
+      for (PetscInt j = 0; j < n; j++) rom->Vc[i + c->nlocal * j] = Vc[perm[loc] * n + j];
+    }
+    PetscCall(VecRestoreArrayRead(ckeys, &k));
+    PetscCall(VecDestroy(&ckeys));
+    PetscCall(VecDestroy(&keys));
+    PetscCall(PetscFree2(fileKey, perm));
+  }
+  PetscCall(PetscFree2(cdofs, Vc));
+  PetscFunctionReturn(0);
+}
+
 /* Loads a matching ROM file. *matched is false (and nothing is loaded) when the fingerprint
    differs; *why then says what differs first. */
-PetscErrorCode BoltROMLoad(const char file[], const char fingerprint[], BoltReductionOptions *o, BoltContactSet *c, BoltLoadSet *loads, BoltROM **romp, PetscBool *matched, char why[], size_t whylen)
+PetscErrorCode BoltROMLoad(const char file[], const BoltROMFingerprint *fingerprint, PetscBool preloadState, BoltReductionOptions *o, BoltContactSet *c, BoltLoadSet *loads, BoltROM **romp, PetscBool *matched, char why[], size_t whylen)
 {
   MPI_Comm     comm = o->comm;
   PetscViewer  v;
-  char        *fp = NULL, *groups = NULL, *input = NULL;
-  PetscInt     n, ncd, npts = 0;
-  PetscScalar *a, *Vc, *cdofs, *Vpoints;
+  char        *groups = NULL, *input = NULL;
+  PetscInt     n, npts = 0;
+  PetscScalar *a, *Vpoints;
   BoltROM     *rom;
   PetscBool    same;
 
   PetscFunctionBeginUser;
   *matched = PETSC_FALSE;
   PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, file, FILE_MODE_READ, &v));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "fingerprint", PETSC_STRING, NULL, &fp));
-  PetscCall(PetscStrcmp(fp, fingerprint, &same));
-  if (!same) {
-    /* first differing field, for the message */
-    char  *x = fp, *y = (char *)fingerprint;
-    size_t k = 0;
-    while (x[k] && y[k] && x[k] == y[k]) k++;
-    while (k > 0 && x[k - 1] != ';') k--;
-    PetscCall(PetscSNPrintf(why, whylen, "file has '%.60s', scene needs '%.60s'", x + k, y + k));
-    PetscCall(PetscFree(fp));
+  PetscCall(BoltROMFingerprintMatch(fingerprint, v, matched, why, whylen));
+  if (!*matched) {
     PetscCall(PetscViewerDestroy(&v));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscFree(fp));
+  *matched = PETSC_FALSE;
   PetscCall(PetscNew(&rom));
   rom->comm     = comm;
   rom->contact  = c;
@@ -451,54 +441,8 @@ PetscErrorCode BoltROMLoad(const char file[], const char fingerprint[], BoltRedu
     PetscCall(PetscFree(a));
     PetscCall(PetscFree(Vpoints));
   }
-  /* rows at this rank's contact DOFs */
-  {
-    Vec w;
-    PetscCall(VecCreate(PETSC_COMM_SELF, &w));
-    PetscCall(PetscObjectSetName((PetscObject)w, "contact_dof_keys"));
-    PetscCall(VecLoad(w, v));
-    PetscCall(VecGetSize(w, &ncd));
-    PetscCall(PetscMalloc2(ncd + 1, &cdofs, ncd * n + 1, &Vc));
-    PetscCall(VecGetArray(w, &a));
-    PetscCall(PetscArraycpy(cdofs, a, ncd));
-    PetscCall(VecRestoreArray(w, &a));
-    PetscCall(VecDestroy(&w));
-    PetscCall(BoltReadArray(v, "Vc", ncd, n, Vc));
-    {
-      /* the file's rows are keyed by partition-independent DOF keys: find ours among them */
-      Vec                keys, ckeys;
-      const PetscScalar *k;
-      PetscInt          *fileKey, *perm;
-      PetscCall(PetscMalloc2(ncd + 1, &fileKey, ncd + 1, &perm));
-      for (PetscInt i = 0; i < ncd; i++) {
-        fileKey[i] = (PetscInt)PetscRealPart(cdofs[i]);
-        perm[i]    = i;
-      }
-      PetscCall(PetscSortIntWithArray(ncd, fileKey, perm));
-      PetscCall(BoltMeshDofKeys(c->mesh, loads->load, &keys));
-      PetscCall(VecDuplicate(c->uc, &ckeys));
-      PetscCall(VecScatterBegin(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
-      PetscCall(VecScatterEnd(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
-      PetscCall(PetscCalloc1(c->nlocal * n + 1, &rom->Vc));
-      PetscCall(VecGetArrayRead(ckeys, &k));
-      for (PetscInt i = 0; i < c->nlocal; i++) {
-        PetscInt key = (PetscInt)PetscRealPart(k[i]), loc;
-        PetscCall(PetscFindInt(key, ncd, fileKey, &loc));
-        PetscCheck(loc >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT " (key %" PetscInt_FMT "): rebuild it with -rom_rebuild", file, c->localGlobal[i], key);
-        for (PetscInt j = 0; j < n; j++) rom->Vc[i + c->nlocal * j] = Vc[perm[loc] * n + j];
-      }
-      PetscCall(VecRestoreArrayRead(ckeys, &k));
-      PetscCall(VecDestroy(&ckeys));
-      PetscCall(VecDestroy(&keys));
-      PetscCall(PetscFree2(fileKey, perm));
-    }
-    PetscCall(PetscFree2(cdofs, Vc));
-  }
-  {
-    char *has;
-    PetscCall(PetscStrstr(fingerprint, "; preload state", &has));
-    if (has) PetscCall(BoltROMLoadPreloadState(rom, c, v, file));
-  }
+  PetscCall(ROMLoadContactRows(rom, c, loads, v, file));
+  if (preloadState) PetscCall(BoltROMLoadPreloadState(rom, c, v, file));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscFree(groups));
   PetscCall(PetscFree(input));

@@ -32,6 +32,29 @@ PetscBool BoltROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact)
   return o->holdUnmarkedSet ? o->holdUnmarked : (PetscBool)!contact->law.friction;
 }
 
+/* The reduction's part of the fingerprint: the static shapes and modes in the basis, each
+   field 0 where it does not apply (the closed-contact Krylov's active set is named either way,
+   so that files built with the set free are rebuilt). */
+static PetscErrorCode ROMFingerprintShapes(BoltReductionOptions *o, BoltROM *rom, PetscBool staticShapes, PetscReal staticPenaltyScale)
+{
+  BoltROMFingerprint *fp = &rom->fingerprint;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltROMFingerprintString(fp, "static_shapes", !staticShapes ? "none" : rom->preloadState ? "preload state" : "static shapes"));
+  PetscCall(BoltROMFingerprintInt(fp, "closed_krylov", staticShapes ? o->nClosed : 0));
+  PetscCall(BoltROMFingerprintInt(fp, "closed_krylov_keep_active", staticShapes && o->nClosed > 0 ? o->closedKeepActive : 0));
+  PetscCall(BoltROMFingerprintReal(fp, "static_penalty_scale", staticShapes ? staticPenaltyScale : 0));
+  PetscCall(BoltROMFingerprintReal(fp, "opening_scale", rom->openingScale));
+  PetscCall(BoltROMFingerprintInt(fp, "opened_joint_krylov", rom->openingScale > 0 ? rom->nOpenKrylov : 0));
+  PetscCall(BoltROMFingerprintReal(fp, "slip_scale", rom->slipScale));
+  PetscCall(BoltROMFingerprintReal(fp, "cone_shapes", rom->coneShapes));
+  PetscCall(BoltROMFingerprintInt(fp, "cone_traction", rom->coneShapes > 0 ? rom->coneTraction : 0));
+  PetscCall(BoltROMFingerprintInt(fp, "cone_modes", rom->coneModes));
+  PetscCall(BoltROMFingerprintInt(fp, "snapshot_modes", o->nSnapshotModes));
+  PetscCall(BoltROMFingerprintReal(fp, "snapshot_tol", o->nSnapshotModes > 0 ? o->snapshotTol : 0));
+  PetscFunctionReturn(0);
+}
+
 /* The ROM's settings from the reduction's options and the scene (each default resolved here),
    and the fingerprint of what its basis depends on. */
 PetscErrorCode ROMResolveSettings(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscBool *staticShapesOut, PetscReal *staticPenaltyScaleOut)
@@ -52,7 +75,7 @@ PetscErrorCode ROMResolveSettings(BoltReductionOptions *o, BoltAssembler *asmb, 
   rom->augment = o->augmentSet ? o->augment : (PetscBool)(contact->augment && o->nCCM + o->nJIM == 0);
   PetscCheck(o->krylov, o->comm, PETSC_ERR_ARG_WRONGSTATE, "BoltROMBuild needs the Krylov options: configure the reduction with BoltReductionSetFromOptions");
   kry = o->krylov;
-  PetscCall(BoltROMFingerprint(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, rom->fingerprint, sizeof(rom->fingerprint)));
+  PetscCall(BoltROMFingerprintScene(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, &rom->fingerprint));
   /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
   rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && loads->hasPreload && loads->preloadForce != 0);
   PetscCheck(!(o->preloadStateSet && o->preloadState) || rom->preloadState, o->comm, PETSC_ERR_USER_INPUT, "-rom_preload_state needs a ROM with the penalty law (interface reduction, -rom_contact_augment false) and a nonzero bolt preload");
@@ -75,34 +98,7 @@ PetscErrorCode ROMResolveSettings(BoltReductionOptions *o, BoltAssembler *asmb, 
   rom->coneTraction = o->coneTraction;
   rom->coneModes    = rom->coneShapes > 0 ? o->coneModes : 0;
   staticPenaltyScale = o->staticPenaltyScale > 0 ? o->staticPenaltyScale : PetscMax(1.0, 2e6 / contact->penaltyFactor); /* 2e6 E/m */
-  if (staticShapes) {
-    char more[64];
-    PetscCall(PetscStrlcat(rom->fingerprint, rom->preloadState ? "; preload state" : "; static shapes", sizeof(rom->fingerprint)));
-    if (o->nClosed > 0) { /* the active set named either way, so that files built with the set free are rebuilt */
-      PetscCall(PetscSNPrintf(more, sizeof(more), "; closed-contact Krylov %" PetscInt_FMT " (%s)", o->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free"));
-      PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
-    }
-    PetscCall(PetscSNPrintf(more, sizeof(more), "; static penalty x %g", (double)staticPenaltyScale));
-    PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
-    if (rom->openingScale > 0) {
-      PetscCall(PetscSNPrintf(more, sizeof(more), "; opening shapes at -/+ %g x the load, %" PetscInt_FMT " opened-joint Krylov", (double)rom->openingScale, rom->nOpenKrylov));
-      PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
-    }
-    if (rom->slipScale > 0) {
-      PetscCall(PetscSNPrintf(more, sizeof(more), "; slip shapes at -/+ %g x the load", (double)rom->slipScale));
-      PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
-    }
-    if (rom->coneShapes > 0) {
-      PetscCall(PetscSNPrintf(more, sizeof(more), "; cone shapes at %g%s", (double)rom->coneShapes, rom->coneTraction ? "" : " (normal)"));
-      if (rom->coneModes > 0) PetscCall(PetscSNPrintf(more + strlen(more), sizeof(more) - strlen(more), ", %" PetscInt_FMT " modes", rom->coneModes));
-      PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
-    }
-  }
-  if (o->nSnapshotModes > 0) {
-    char more[64];
-    PetscCall(PetscSNPrintf(more, sizeof(more), "; snapshot modes %" PetscInt_FMT " above %g", o->nSnapshotModes, (double)o->snapshotTol));
-    PetscCall(PetscStrlcat(rom->fingerprint, more, sizeof(rom->fingerprint)));
-  }
+  PetscCall(ROMFingerprintShapes(o, rom, staticShapes, staticPenaltyScale));
   *staticShapesOut       = staticShapes;
   *staticPenaltyScaleOut = staticPenaltyScale;
   PetscFunctionReturn(0);
@@ -121,7 +117,7 @@ PetscErrorCode ROMReuseFile(BoltReductionOptions *o, BoltContactSet *contact, Bo
   PetscCall(PetscTestFile(o->file, 'r', &exists));
   if (exists) {
     BoltROM *loaded = NULL;
-    PetscCall(BoltROMLoad(o->file, rom->fingerprint, o, contact, loads, &loaded, &matched, why, sizeof(why)));
+    PetscCall(BoltROMLoad(o->file, &rom->fingerprint, rom->preloadState, o, contact, loads, &loaded, &matched, why, sizeof(why)));
     if (matched) {
       PetscCall(PetscTime(&t3));
       loaded->tOffline = t3 - t0;
@@ -137,7 +133,7 @@ PetscErrorCode ROMReuseFile(BoltReductionOptions *o, BoltContactSet *contact, Bo
       loaded->updateRank   = o->updateRank;
       loaded->holdUnmarked = BoltROMDefaultHold(o, contact);
       loaded->gapsEverywhere = o->gapsEverywhere;
-      PetscCall(PetscStrncpy(loaded->fingerprint, rom->fingerprint, sizeof(loaded->fingerprint)));
+      loaded->fingerprint  = rom->fingerprint;
       PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
       PetscCall(PetscFree(rom));
       *romp = loaded;
