@@ -243,32 +243,139 @@ static PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt,
   PetscFunctionReturn(0);
 }
 
+/* The local and global rows of M, C, K and B (which must agree) and B's columns. */
+static PetscErrorCode KrylovSizes(Mat M, Mat C, Mat K, BV B, PetscInt *n, PetscInt *N, PetscInt *p)
+{
+  MPI_Comm comm = PetscObjectComm((PetscObject)K);
+  PetscInt nC, NC, nK, NK, nB, NB;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetSize(M, N, NULL));
+  PetscCall(MatGetLocalSize(M, n, NULL));
+  PetscCall(MatGetSize(C, &NC, NULL));
+  PetscCall(MatGetLocalSize(C, &nC, NULL));
+  PetscCall(MatGetSize(K, &NK, NULL));
+  PetscCall(MatGetLocalSize(K, &nK, NULL));
+  PetscCheck(NC == *N && NK == *N && nC == *n && nK == *n, comm, PETSC_ERR_ARG_SIZ, "M, C and K must have the same size and row layout (global %" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ")", *N, NC, NK);
+  PetscCall(BVGetSizes(B, &nB, &NB, p));
+  PetscCheck(NB == *N && nB == *n, comm, PETSC_ERR_ARG_SIZ, "The input BV B must have the row layout of M, C, K (global %" PetscInt_FMT " rows, expected %" PetscInt_FMT ")", NB, *N);
+  PetscCheck(*p >= 1, comm, PETSC_ERR_USER_INPUT, "The input BV B has no column: give at least one input vector");
+  PetscFunctionReturn(0);
+}
+
+/* Balances the halves of L: tau ~ ||Q||^{-1/2} ~ the lowest |s0 + i omega| that r_0 excites,
+   from the first basis vector. */
+static PetscErrorCode KrylovScaling(BoltKrylov *kr, Mat F, Mat M, BV U, BV X, BV W1, BV W2, PetscReal *tau)
+{
+  PetscReal      qn;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(BVSetActiveColumns(U, 0, 1));
+  PetscCall(BVSetActiveColumns(X, 0, 1));
+  PetscCall(BVSetActiveColumns(W1, 0, 1));
+  PetscCall(BVCopy(U, X));
+  PetscCall(BVMatMult(X, M, W1));
+  PetscCall(KrylovSolve(kr, F, W1, W2, 1));
+  PetscCall(BVNormColumn(W2, 0, NORM_2, &qn));
+  if (qn > 0 && !PetscIsInfOrNanReal(qn)) *tau = 1.0 / PetscSqrtReal(qn);
+  PetscCall(PetscInfo(NULL, "Krylov: Arnoldi scaling tau = %g rad/s\n", (double)*tau));
+  PetscCall(PetscTime(&t1));
+  kr->tSolve += t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+/* The coefficient vectors' basis S (rowsS x colsS, sequential) with block 0's z_j = [u_j; 0],
+   its work block Sc and projection matrix Hs. */
+static PetscErrorCode KrylovCoefficientBasis(PetscInt r0, PetscInt rowsS, PetscInt colsS, PetscInt nbw, BV *S, BV *Sc, Mat *Hs)
+{
+  PetscScalar *sa;
+
+  PetscFunctionBeginUser;
+  PetscCall(BVCreate(PETSC_COMM_SELF, S));
+  PetscCall(BVSetSizes(*S, rowsS, rowsS, colsS));
+  PetscCall(BVSetType(*S, BVSVEC));
+  PetscCall(BVSetOrthogonalization(*S, BV_ORTHOG_CGS, BV_ORTHOG_REFINE_IFNEEDED, PETSC_DEFAULT, BV_ORTHOG_BLOCK_GS));
+  PetscCall(BVDuplicateResize(*S, nbw, Sc));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, colsS, nbw, NULL, Hs));
+  PetscCall(BVGetArray(*S, &sa));
+  PetscCall(PetscArrayzero(sa, rowsS * colsS));
+  for (PetscInt j = 0; j < r0; j++) sa[j + j * rowsS] = 1.0;
+  PetscCall(BVRestoreArray(*S, &sa));
+  PetscFunctionReturn(0);
+}
+
+/* The new Arnoldi vectors [w; x] (tops w in X, x the previous block's c..c+nc) as coefficients
+   [U' w; a] in S, orthonormalized among the previous ones (na counts them). */
+static PetscErrorCode KrylovNewCoefficients(BoltKrylov *kr, BV U, PetscInt r, BV X, Mat H, BV S, BV Sc, Mat Hs, PetscInt rowsS, PetscInt capTop, PetscInt capBot, PetscInt k, PetscInt c, PetscInt nc, PetscReal nrm0[], PetscInt *na)
+{
+  PetscInt           ldH;
+  PetscScalar       *sc;
+  const PetscScalar *h, *sr;
+
+  PetscFunctionBeginUser;
+  PetscCall(BVSetActiveColumns(U, 0, r));
+  PetscCall(BVDot(X, U, H));
+  PetscCall(MatDenseGetLDA(H, &ldH));
+  PetscCall(MatDenseGetArrayRead(H, &h));
+  PetscCall(BVGetArrayRead(S, &sr));
+  PetscCall(BVGetArray(Sc, &sc));
+  PetscCall(PetscArrayzero(sc, rowsS * nc));
+  for (PetscInt j = 0; j < nc; j++) {
+    for (PetscInt i = 0; i < r; i++) sc[i + j * rowsS] = h[i + j * ldH];
+    if (k == 1) sc[capTop + c + j + j * rowsS] = 1.0;
+    else
+      for (PetscInt i = 0; i < capBot; i++) sc[capTop + i + j * rowsS] = sr[i + (c + j) * rowsS];
+  }
+  PetscCall(BVRestoreArray(Sc, &sc));
+  PetscCall(BVRestoreArrayRead(S, &sr));
+  PetscCall(MatDenseRestoreArrayRead(H, &h));
+  PetscCall(KrylovAppend(S, na, Sc, nc, kr->deflationTol, Hs, nrm0, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Block 0: r_0 = -Kt^{-1} B (the sign does not change the span), nbw columns at a time, appended
+   to U (r counts its columns). */
+static PetscErrorCode KrylovBlockZero(BoltKrylov *kr, Mat F, BV B, PetscInt p, PetscInt nbw, BV U, BV W1, BV W2, Mat H, PetscReal nrm0[], PetscInt *r)
+{
+  Vec       v;
+  PetscReal t0, t1;
+
+  PetscFunctionBeginUser;
+  for (PetscInt c = 0; c < p; c += nbw) {
+    const PetscInt nc = PetscMin(nbw, p - c);
+    PetscCall(PetscTime(&t0));
+    for (PetscInt j = 0; j < nc; j++) {
+      PetscCall(BVGetColumn(W1, j, &v));
+      PetscCall(BVCopyVec(B, c + j, v));
+      PetscCall(BVRestoreColumn(W1, j, &v));
+    }
+    PetscCall(KrylovSolve(kr, F, W1, W2, nc));
+    PetscCall(PetscTime(&t1));
+    kr->tSolve += t1 - t0;
+    PetscCall(KrylovAppend(U, r, W2, nc, kr->deflationTol, H, nrm0, NULL));
+    PetscCall(PetscTime(&t0));
+    kr->tOrth += t0 - t1;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltKrylovBuild(BoltKrylov *kr, Mat M, Mat C, Mat K, BV B, BV *V)
 {
   MPI_Comm           comm = PetscObjectComm((PetscObject)K);
   Mat                Kt, F, H = NULL, Hs = NULL, Qt, Qb;
   KSP                ksp;
   BV                 U, X, Y, W1, W2, S = NULL, Sc = NULL;
-  Vec                v;
   PetscBool          last;
-  PetscInt           m = kr->order, n, N, nC, NC, nK, NK, nB, NB, p, nbw, r = 0, r0, capU, c, nc, j, i, k;
-  PetscInt           capTop = 0, capBot = 0, rowsS = 0, colsS = 0, na = 0, naBefore, rBefore, blkStart, blkEnd, ldH;
-  PetscReal         *nrm0, tau = 1.0, s0 = kr->s0, t0, t1, qn;
-  PetscScalar       *sa, *sc;
-  const PetscScalar *h, *sr;
+  PetscInt           m = kr->order, n, N, p, nbw, r = 0, r0, capU, c, nc, k;
+  PetscInt           capTop = 0, capBot = 0, rowsS = 0, na = 0, naBefore, rBefore, blkStart, blkEnd;
+  PetscReal         *nrm0, tau = 1.0, s0 = kr->s0, t0, t1;
+  const PetscScalar *sr;
 
   PetscFunctionBeginUser;
   PetscCall(KrylovCheck(kr));
-  PetscCall(MatGetSize(M, &N, NULL));
-  PetscCall(MatGetLocalSize(M, &n, NULL));
-  PetscCall(MatGetSize(C, &NC, NULL));
-  PetscCall(MatGetLocalSize(C, &nC, NULL));
-  PetscCall(MatGetSize(K, &NK, NULL));
-  PetscCall(MatGetLocalSize(K, &nK, NULL));
-  PetscCheck(NC == N && NK == N && nC == n && nK == n, comm, PETSC_ERR_ARG_SIZ, "M, C and K must have the same size and row layout (global %" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ")", N, NC, NK);
-  PetscCall(BVGetSizes(B, &nB, &NB, &p));
-  PetscCheck(NB == N && nB == n, comm, PETSC_ERR_ARG_SIZ, "The input BV B must have the row layout of M, C, K (global %" PetscInt_FMT " rows, expected %" PetscInt_FMT ")", NB, N);
-  PetscCheck(p >= 1, comm, PETSC_ERR_USER_INPUT, "The input BV B has no column: give at least one input vector");
+  PetscCall(KrylovSizes(M, C, K, B, &n, &N, &p));
   PetscCall(PetscArrayzero(kr->rankPerOrder, BOLTKRYLOV_MAX_ORDER));
   kr->rank = 0;
   kr->nsolves = 0;
@@ -292,22 +399,7 @@ PetscErrorCode BoltKrylovBuild(BoltKrylov *kr, Mat M, Mat C, Mat K, BV B, BV *V)
   capU = p;
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, capU, nbw, NULL, &H));
 
-  /* Block 0: r_0 = -Kt^{-1} B (the sign does not change the span) */
-  for (c = 0; c < p; c += nbw) {
-    nc = PetscMin(nbw, p - c);
-    PetscCall(PetscTime(&t0));
-    for (j = 0; j < nc; j++) {
-      PetscCall(BVGetColumn(W1, j, &v));
-      PetscCall(BVCopyVec(B, c + j, v));
-      PetscCall(BVRestoreColumn(W1, j, &v));
-    }
-    PetscCall(KrylovSolve(kr, F, W1, W2, nc));
-    PetscCall(PetscTime(&t1));
-    kr->tSolve += t1 - t0;
-    PetscCall(KrylovAppend(U, &r, W2, nc, kr->deflationTol, H, nrm0, NULL));
-    PetscCall(PetscTime(&t0));
-    kr->tOrth += t0 - t1;
-  }
+  PetscCall(KrylovBlockZero(kr, F, B, p, nbw, U, W1, W2, H, nrm0, &r));
   r0                  = r;
   kr->rankPerOrder[0] = r0;
   PetscCheck(r0 > 0, comm, PETSC_ERR_USER_INPUT, "Every column of the input B is zero (or below -krylov_deflation_tol): there is no input to reduce");
@@ -323,35 +415,13 @@ PetscErrorCode BoltKrylovBuild(BoltKrylov *kr, Mat M, Mat C, Mat K, BV B, BV *V)
     nbw = PetscMin(nbw, r0);
   }
   if (m >= 3) {
-    /* Balance the halves of L: tau ~ ||Q||^{-1/2} ~ the lowest |s0 + i omega| that r_0 excites */
-    PetscCall(PetscTime(&t0));
-    PetscCall(BVSetActiveColumns(U, 0, 1));
-    PetscCall(BVSetActiveColumns(X, 0, 1));
-    PetscCall(BVSetActiveColumns(W1, 0, 1));
-    PetscCall(BVCopy(U, X));
-    PetscCall(BVMatMult(X, M, W1));
-    PetscCall(KrylovSolve(kr, F, W1, W2, 1));
-    PetscCall(BVNormColumn(W2, 0, NORM_2, &qn));
-    if (qn > 0 && !PetscIsInfOrNanReal(qn)) tau = 1.0 / PetscSqrtReal(qn);
-    PetscCall(PetscInfo(NULL, "Krylov: Arnoldi scaling tau = %g rad/s\n", (double)tau));
-    PetscCall(PetscTime(&t1));
-    kr->tSolve += t1 - t0;
+    PetscCall(KrylovScaling(kr, F, M, U, X, W1, W2, &tau));
 
     /* Arnoldi vectors of blocks 0..m-2 as coefficients: tops in U(:, 0:capTop), bottoms in U(:, 0:capBot) */
     capTop = r0 * (m - 1);
     capBot = r0 * (m - 2);
     rowsS  = capTop + capBot;
-    colsS  = r0 * (m - 1);
-    PetscCall(BVCreate(PETSC_COMM_SELF, &S));
-    PetscCall(BVSetSizes(S, rowsS, rowsS, colsS));
-    PetscCall(BVSetType(S, BVSVEC));
-    PetscCall(BVSetOrthogonalization(S, BV_ORTHOG_CGS, BV_ORTHOG_REFINE_IFNEEDED, PETSC_DEFAULT, BV_ORTHOG_BLOCK_GS));
-    PetscCall(BVDuplicateResize(S, nbw, &Sc));
-    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, colsS, nbw, NULL, &Hs));
-    PetscCall(BVGetArray(S, &sa));
-    PetscCall(PetscArrayzero(sa, rowsS * colsS));
-    for (j = 0; j < r0; j++) sa[j + j * rowsS] = 1.0; /* block 0: z_j = [u_j; 0] */
-    PetscCall(BVRestoreArray(S, &sa));
+    PetscCall(KrylovCoefficientBasis(r0, rowsS, r0 * (m - 1), nbw, &S, &Sc, &Hs));
     na = r0;
   }
 
@@ -397,24 +467,7 @@ PetscErrorCode BoltKrylovBuild(BoltKrylov *kr, Mat M, Mat C, Mat K, BV B, BV *V)
       if (!last) PetscCall(BVCopy(W2, X)); /* keep the tops w for their coefficients */
       PetscCall(KrylovAppend(U, &r, W2, nc, kr->deflationTol, H, nrm0, NULL));
       if (!last) {
-        /* the new Arnoldi vectors [w; x] as coefficients [U' w; a], orthonormalized among the previous ones */
-        PetscCall(BVSetActiveColumns(U, 0, r));
-        PetscCall(BVDot(X, U, H));
-        PetscCall(MatDenseGetLDA(H, &ldH));
-        PetscCall(MatDenseGetArrayRead(H, &h));
-        PetscCall(BVGetArrayRead(S, &sr));
-        PetscCall(BVGetArray(Sc, &sc));
-        PetscCall(PetscArrayzero(sc, rowsS * nc));
-        for (j = 0; j < nc; j++) {
-          for (i = 0; i < r; i++) sc[i + j * rowsS] = h[i + j * ldH];
-          if (k == 1) sc[capTop + c + j + j * rowsS] = 1.0;
-          else
-            for (i = 0; i < capBot; i++) sc[capTop + i + j * rowsS] = sr[i + (c + j) * rowsS];
-        }
-        PetscCall(BVRestoreArray(Sc, &sc));
-        PetscCall(BVRestoreArrayRead(S, &sr));
-        PetscCall(MatDenseRestoreArrayRead(H, &h));
-        PetscCall(KrylovAppend(S, &na, Sc, nc, kr->deflationTol, Hs, nrm0, NULL));
+        PetscCall(KrylovNewCoefficients(kr, U, r, X, H, S, Sc, Hs, rowsS, capTop, capBot, k, c, nc, nrm0, &na));
       }
       PetscCall(PetscTime(&t0));
       kr->tOrth += t0 - t1;
