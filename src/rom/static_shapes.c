@@ -283,8 +283,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
       }
   rom->nConeModes = rom->coneModes > 0 ? ncone : 0;
   PetscCall(PetscPrintf(rom->comm, "ROM: %" PetscInt_FMT " opening shapes, %" PetscInt_FMT " cone shapes\n", 3 * npairs, ncone));
-  for (PetscInt k = 0; k < nOpenKrylov; k++) extra[(*nextra)++] = openK[k];
-  PetscCall(PetscFree(openK));
+  for (PetscInt k = 0; k < nOpenKrylov; k++) extra[(*nextra)++] = openK[k]; /* the array itself is the caller's to free */
   *extrap = extra;
   PetscFunctionReturn(0);
 }
