@@ -1,0 +1,148 @@
+/* Files under src/sys: folders made before the files written into them, and the HDF5 datasets
+   (PetscViewerHDF5) that the models, checkpoints and ROM files write and read back, with a
+   sorted index to find a row by its key. */
+#include "boltrom.h"
+#include <petscviewerhdf5.h>
+#include <sys/stat.h>
+
+PetscErrorCode BoltMakeDir(MPI_Comm comm, const char dir[])
+{
+  PetscMPIInt rank;
+  PetscBool   ok = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    char   path[PETSC_MAX_PATH_LEN];
+    size_t len;
+    PetscCall(PetscStrncpy(path, dir, sizeof(path)));
+    PetscCall(PetscStrlen(path, &len));
+    for (size_t i = 1; i <= len && ok; i++) { /* mkdir -p */
+      if (path[i] == '/' || path[i] == '\0') {
+        char      save = path[i];
+        PetscBool exists;
+        path[i] = '\0';
+        PetscCall(PetscTestDirectory(path, 'w', &exists));
+        if (!exists) {
+          PetscCall(PetscTestDirectory(path, 'r', &exists));
+          if (!exists && mkdir(path, 0755) != 0) ok = PETSC_FALSE;
+        }
+        path[i] = save;
+      }
+    }
+    if (ok) PetscCall(PetscTestDirectory(dir, 'w', &ok));
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_BOOL, 0, comm));
+  PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot create or write the directory %s: choose a writable one (-output_dir, -summary, -rom_file)", dir);
+  PetscFunctionReturn(0);
+}
+
+/* Creates the folder of a file path (nothing for a bare file name), so that a file that
+   cannot be written is reported before the work that produces it. */
+PetscErrorCode BoltMakeParentDir(MPI_Comm comm, const char path[])
+{
+  char  dir[PETSC_MAX_PATH_LEN], *slash;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(dir, path, sizeof(dir)));
+  PetscCall(PetscStrrchr(dir, '/', &slash));
+  if (slash != dir) {
+    slash[-1] = '\0';
+    PetscCall(BoltMakeDir(comm, dir));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* One HDF5 dataset of comm from n values per rank, in rank order; rootOnly: rank 0's alone (data
+   that every rank holds alike). cols > 1 shapes it (rows, cols). */
+PetscErrorCode BoltHDF5WriteValues(PetscViewer v, MPI_Comm comm, const char name[], PetscInt n, PetscInt cols, const PetscScalar x[], PetscBool rootOnly)
+{
+  Vec          w;
+  PetscMPIInt  rank;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rootOnly && rank) n = 0;
+  PetscCall(VecCreateMPI(comm, n, PETSC_DETERMINE, &w));
+  if (cols > 1) PetscCall(VecSetBlockSize(w, cols));
+  PetscCall(PetscObjectSetName((PetscObject)w, name));
+  PetscCall(VecGetArray(w, &a));
+  PetscCall(PetscArraycpy(a, x, n));
+  PetscCall(VecRestoreArray(w, &a));
+  PetscCall(VecView(w, v));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
+/* Each vector's local values as the dataset names[f] (BoltHDF5WriteValues: rootOnly for vectors
+   that are the same on every rank). */
+PetscErrorCode BoltHDF5WriteVecs(PetscViewer v, MPI_Comm comm, PetscInt n, const char *const names[], Vec x[], PetscBool rootOnly)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt f = 0; f < n; f++) {
+    const PetscScalar *a;
+    PetscInt           nloc;
+    PetscCall(VecGetLocalSize(x[f], &nloc));
+    PetscCall(VecGetArrayRead(x[f], &a));
+    PetscCall(BoltHDF5WriteValues(v, comm, names[f], nloc, 1, a, rootOnly));
+    PetscCall(VecRestoreArrayRead(x[f], &a));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A whole dataset on every rank (freed by the caller). */
+PetscErrorCode BoltReadAll(PetscViewer v, MPI_Comm comm, const char name[], PetscInt *n, PetscReal **x)
+{
+  Vec                w, all;
+  VecScatter         sc;
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(comm, &w));
+  PetscCall(PetscObjectSetName((PetscObject)w, name));
+  PetscCall(VecLoad(w, v));
+  PetscCall(VecScatterCreateToAll(w, &sc, &all));
+  PetscCall(VecScatterBegin(sc, w, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, w, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetSize(all, n));
+  PetscCall(PetscMalloc1(*n + 1, x));
+  PetscCall(VecGetArrayRead(all, &a));
+  for (PetscInt i = 0; i < *n; i++) (*x)[i] = PetscRealPart(a[i]);
+  PetscCall(VecRestoreArrayRead(all, &a));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
+/* A sorted index of n keys (integers stored as reals), to find the row of a key. */
+PetscErrorCode BoltKeyIndexCreate(PetscInt n, const PetscReal keys[], BoltKeyIndex *ix)
+{
+  PetscFunctionBeginUser;
+  ix->n = n;
+  PetscCall(PetscMalloc2(n + 1, &ix->key, n + 1, &ix->row));
+  for (PetscInt i = 0; i < n; i++) {
+    ix->key[i] = (PetscInt)keys[i];
+    ix->row[i] = i;
+  }
+  PetscCall(PetscSortIntWithArray(n, ix->key, ix->row));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltKeyIndexFind(BoltKeyIndex *ix, PetscInt key, PetscInt *row)
+{
+  PetscInt loc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFindInt(key, ix->n, ix->key, &loc));
+  *row = loc >= 0 ? ix->row[loc] : -1;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *ix)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree2(ix->key, ix->row));
+  PetscFunctionReturn(0);
+}
