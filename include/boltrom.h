@@ -729,7 +729,7 @@ PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[],
 PetscErrorCode BoltStaticSolve(Mat, Vec, Vec, const char[]);
 PetscErrorCode BoltModalSolve(Mat, Mat, PetscInt, const char[], PetscInt *, PetscReal[]);
 
-/* ------------------------------------------------------------------ output.c */
+/* ------------------------------------------------------------------ app/output.c, app/json.c */
 typedef struct {
   MPI_Comm comm;
   char     dir[PETSC_MAX_PATH_LEN];
@@ -769,8 +769,12 @@ PetscErrorCode BoltJSONReal(BoltJSON *, const char[], PetscReal);
 PetscErrorCode BoltJSONString(BoltJSON *, const char[], const char[]);
 PetscErrorCode BoltJSONRealArray(BoltJSON *, const char[], PetscInt, const PetscReal[]);
 PetscErrorCode BoltJSONClose(BoltJSON *);
+
+/* ------------------------------------------------------------------ sys/hdf5.c: folders, datasets */
 PetscErrorCode BoltMakeDir(MPI_Comm, const char[]);
 PetscErrorCode BoltMakeParentDir(MPI_Comm, const char[]);
+/* sys/option_vector.c: a vector option of exactly n finite reals, inside PetscOptionsBegin/End */
+PetscErrorCode BoltOptionsRealVector(PetscOptionItems *, const char[], const char[], PetscInt, PetscReal[], PetscBool *);
 PetscErrorCode BoltHDF5WriteValues(PetscViewer, MPI_Comm, const char[], PetscInt, PetscInt, const PetscScalar[], PetscBool);
 PetscErrorCode BoltHDF5WriteVecs(PetscViewer, MPI_Comm, PetscInt, const char *const[], Vec[], PetscBool);
 PetscErrorCode BoltReadAll(PetscViewer, MPI_Comm, const char[], PetscInt *, PetscReal **);

@@ -26,19 +26,17 @@ PetscErrorCode BoltLoadSetCreate(BoltMesh *mesh, BoltLoadSet **ls)
 
 PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *l)
 {
-  PetscInt  n3 = 3;
   PetscReal nrm;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(l->mesh->comm, NULL, "Loads", "boltrom");
   PetscCall(PetscOptionsString("-load_group", "Physical group (point or surface) that carries the external load", NULL, l->loadGroup, l->loadGroup, sizeof(l->loadGroup), NULL));
-  PetscCall(PetscOptionsRealArray("-load_direction", "Direction of the external load (normalised)", NULL, l->loadDirection, &n3, NULL));
+  PetscCall(BoltOptionsRealVector(PetscOptionsObject, "-load_direction", "Direction of the external load, x,y,z (normalised)", 3, l->loadDirection, NULL));
   PetscCall(PetscOptionsReal("-load_force", "Total external force [N]", NULL, l->loadForce, &l->loadForce, NULL));
   PetscCall(PetscOptionsReal("-preload_force", "Bolt preload [N]", NULL, l->preloadForce, &l->preloadForce, NULL));
   PetscCall(PetscOptionsString("-preload_lower_group", "Group of the lower preload layer (its nodes pulled along -preload_axis; clamped nodes take nothing)", NULL, l->preloadGroup[0], l->preloadGroup[0], sizeof(l->preloadGroup[0]), NULL));
   PetscCall(PetscOptionsString("-preload_upper_group", "Group of the upper preload layer (its nodes pushed against -preload_axis)", NULL, l->preloadGroup[1], l->preloadGroup[1], sizeof(l->preloadGroup[1]), NULL));
-  n3 = 3;
-  PetscCall(PetscOptionsRealArray("-preload_axis", "Bolt axis, from the lower to the upper preload layer", NULL, l->preloadAxis, &n3, NULL));
+  PetscCall(BoltOptionsRealVector(PetscOptionsObject, "-preload_axis", "Bolt axis, x,y,z, from the lower to the upper preload layer", 3, l->preloadAxis, NULL));
   PetscCall(PetscOptionsString("-probe_group", "Point group where the response is probed", NULL, l->probeGroup, l->probeGroup, sizeof(l->probeGroup), NULL));
   PetscCall(PetscOptionsInt("-probe_component", "Displacement component of the probe: 0 x, 1 y, 2 z", NULL, l->probeComponent, &l->probeComponent, NULL));
   PetscOptionsEnd();
