@@ -296,13 +296,22 @@ static inline void BoltContactStateChanged(BoltContactState *s)
   s->version++;
   s->lambdaZero = PETSC_FALSE;
 }
-/* The multipliers hold the tractions of the last solve: the strict laws' active-set loop, and
-   friction with a penalty normal (the interface-reduced ROM), where the normal part is the
-   penalty's traction and the tangential one the return map's. */
-static inline PetscBool BoltContactStateLambdaIsTraction(const BoltContactState *s)
-{
-  return (PetscBool)(s->law.strict && (s->augment || s->law.friction));
-}
+/* What a state's law is (contact_law.c), for the modules that choose by it: Coulomb friction at
+   closed pairs (slip, dissipation, a convergence measure of its own); one-sided contact at every
+   node pair solved by the active-set loop (its gaps close to the gap tolerance); a penalty whose
+   energy 1/2 q' K_c q the contact stores; multipliers that hold the tractions of the last solve
+   (the strict laws' loop, and friction with a penalty normal, the interface-reduced ROM, where
+   the normal part is the penalty's traction and the tangential one the return map's). */
+PetscBool BoltContactSetHasFriction(const BoltContactSet *);
+PetscBool BoltContactSetIsComplementarity(const BoltContactSet *);
+PetscBool BoltContactStateHasFriction(const BoltContactState *);
+PetscBool BoltContactStateIsComplementarity(const BoltContactState *);
+PetscBool BoltContactStateHasPenaltyEnergy(const BoltContactState *);
+PetscBool BoltContactStateLambdaIsTraction(const BoltContactState *);
+/* The law's trial traction at point gp of a multiplier and a gap under the point's penalties. */
+void           BoltContactStateTrialOf(const BoltContactState *, PetscInt, const PetscReal[3], const PetscReal[3], PetscReal[3]);
+/* Element e's 24x24 stiffness of its active points under the state's law. */
+PetscErrorCode BoltContactStateElementStiffness(BoltContactState *, PetscInt, PetscReal[576]);
 /* The tangential penalty at point gp of a pair: none where the point slides (released). */
 static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)
 {
@@ -464,6 +473,7 @@ PetscErrorCode BoltDualResetCounters(BoltDual *);
 PetscErrorCode BoltDualView(BoltDual *, PetscViewer);
 PetscErrorCode BoltDualReleaseSolver(BoltDual *);
 PetscErrorCode BoltDualDestroy(BoltDual **);
+PetscErrorCode BoltDualSetKeepActiveSet(BoltDual *, PetscBool);
 /* contact_monitor.c: diagnostics of the loop (-contact_monitor) */
 PetscErrorCode BoltContactMonitorOuter(BoltDual *, PetscInt, PetscInt, PetscInt, PetscBool);
 PetscErrorCode BoltContactMonitorTension(BoltDual *);
@@ -526,6 +536,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *);
 PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
 PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
+PetscErrorCode BoltNewmarkKeepGivenPreload(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
 
@@ -548,6 +559,44 @@ PetscErrorCode BoltGatherAll(MPI_Comm, MPI_Datatype, const void *, PetscInt, voi
 PetscErrorCode BoltGrowReal(PetscReal **, PetscInt *, PetscInt);
 
 /* ------------------------------------------------------------------ reduction.c, rom.c */
+#include "boltrom_krylov.h" /* BoltKrylov: the basis's options */
+
+/* The reduction's options as given (-rom_*, read by BoltROMSetFromOptions); 0 or -1 where the
+   default is resolved by BoltROMSetUp */
+typedef struct {
+  MPI_Comm   comm;
+  PetscInt   nCCM, nJIM;
+  BoltKrylov *krylov;       /* the Krylov basis's options (-krylov_*), owned by the ROM */
+  char       file[PETSC_MAX_PATH_LEN];
+  PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
+  PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
+  PetscBool  checkOrthogonality;
+  PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */
+  PetscBool  preloadState, preloadStateSet; /* -rom_preload_state */
+  PetscReal  penaltyScale;                  /* -rom_contact_penalty_scale, or 0 for the default */
+  PetscReal  bandScale;                     /* -rom_contact_band_scale, or 0 for the default */
+  PetscInt   nClosed;                       /* -rom_closed_krylov */
+  PetscReal  staticPenaltyScale;            /* -rom_static_penalty_scale */
+  PetscBool  closedKeepActive;              /* -rom_closed_keep_active */
+  PetscBool  staticShapes;                  /* -rom_static_shapes */
+  PetscReal  openingScale;                  /* -rom_opening_shapes: the load's scale whose changed pairs get shapes, 0 none */
+  PetscBool  openingScaleSet;               /* given (else the law's default) */
+  PetscReal  slipScale;                     /* -rom_slip_shapes: friction, the load's scale whose pairs beyond the cone get shapes */
+  PetscReal  coneShapes;                    /* -rom_cone_shapes: friction, the pairs at this fraction of the cone in the preloaded state get shapes, 0 none */
+  PetscBool  coneTraction;                  /* -rom_cone_traction */
+  PetscInt   coneModes;                     /* -rom_cone_modes: the cone shapes compressed to this many per direction, 0 a shape per pair */
+  PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
+  PetscBool  holdUnmarked;                  /* -rom_hold_unmarked */
+  PetscBool  holdUnmarkedSet;               /* given (else true, but false under friction) */
+  PetscBool  gapsEverywhere;                /* -rom_gaps_everywhere */
+  PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
+  PetscInt   nSnapshotModes;                /* -rom_snapshot_modes: POD modes of the FOM's snapshots of this run, 0 none */
+  PetscReal  snapshotTol;                   /* -rom_snapshot_tol: their smallest singular value, relative */
+  const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
+  PetscInt   nFomSnapshots;                 /* the FOM's displacement snapshots of this run (-snapshot_every) */
+  Vec       *fomSnapshots;
+} BoltReductionOptions;
+
 /* The ROM file's fingerprint: typed fields, each a setting the basis depends on. */
 #define BOLTROM_FINGERPRINT_FIELDS 256
 typedef struct {
@@ -567,6 +616,10 @@ typedef struct {
    kept up to date element by element. */
 typedef struct {
   MPI_Comm        comm;
+  BoltReductionOptions opt;          /* the options as given (BoltROMSetFromOptions) */
+  PetscBool       view;              /* -rom_view: print the settings used once set up */
+  PetscBool       staticShapes;      /* resolved: static shapes in the basis */
+  PetscReal       staticPenaltyScale; /* resolved: the offline static solves' penalty, x the FOM's */
   PetscInt        n;                 /* reduced dimension */
   Mat             Mr, Cr, Kr, Kcr;   /* MATSEQDENSE n x n on every rank */
   PetscReal       rayleigh[2];       /* C_r = rayleigh[0] M_r + rayleigh[1] K_r */
@@ -679,48 +732,20 @@ PetscErrorCode BoltROMUpdateView(BoltROMUpdate *, PetscViewer);
 PetscInt       BoltROMUpdateLargestBatch(const BoltROMUpdate *);
 PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **);
 
-#include "boltrom_krylov.h" /* BoltKrylov: the basis's options */
 
-/* The reduction's settings, read by BoltReductionSetFromOptions (reduction_object.c) */
-typedef struct {
-  MPI_Comm   comm;
-  PetscInt   nCCM, nJIM;
-  BoltKrylov *krylov;       /* the Krylov basis's options (-krylov_*), owned by BoltReduction */
-  char       file[PETSC_MAX_PATH_LEN];
-  PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
-  PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
-  PetscBool  checkOrthogonality;
-  PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */
-  PetscBool  preloadState, preloadStateSet; /* -rom_preload_state */
-  PetscReal  penaltyScale;                  /* -rom_contact_penalty_scale, or 0 for the default */
-  PetscReal  bandScale;                     /* -rom_contact_band_scale, or 0 for the default */
-  PetscInt   nClosed;                       /* -rom_closed_krylov */
-  PetscReal  staticPenaltyScale;            /* -rom_static_penalty_scale */
-  PetscBool  closedKeepActive;              /* -rom_closed_keep_active */
-  PetscBool  staticShapes;                  /* -rom_static_shapes */
-  PetscReal  openingScale;                  /* -rom_opening_shapes: the load's scale whose changed pairs get shapes, 0 none */
-  PetscBool  openingScaleSet;               /* given (else the law's default) */
-  PetscReal  slipScale;                     /* -rom_slip_shapes: friction, the load's scale whose pairs beyond the cone get shapes */
-  PetscReal  coneShapes;                    /* -rom_cone_shapes: friction, the pairs at this fraction of the cone in the preloaded state get shapes, 0 none */
-  PetscBool  coneTraction;                  /* -rom_cone_traction */
-  PetscInt   coneModes;                     /* -rom_cone_modes: the cone shapes compressed to this many per direction, 0 a shape per pair */
-  PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
-  PetscBool  holdUnmarked;                  /* -rom_hold_unmarked */
-  PetscBool  holdUnmarkedSet;               /* given (else true, but false under friction) */
-  PetscBool  gapsEverywhere;                /* -rom_gaps_everywhere */
-  PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
-  PetscInt   nSnapshotModes;                /* -rom_snapshot_modes: POD modes of the FOM's snapshots of this run, 0 none */
-  PetscReal  snapshotTol;                   /* -rom_snapshot_tol: their smallest singular value, relative */
-  const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
-  PetscInt   nFomSnapshots;                 /* the FOM's displacement snapshots of this run (-snapshot_every) */
-  Vec       *fomSnapshots;
-} BoltReductionOptions;
-
-PetscErrorCode BoltROMBuild(BoltReductionOptions *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, BoltROM **);
-PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
+/* The ROM's life cycle (rom_object.c): options read once at the start whatever -rom says (a
+   scene may carry them with the ROM off), every default resolved by SetUp, which builds the ROM
+   or reads a matching -rom_file; the online operator owns its caches. */
+PetscErrorCode BoltROMCreate(MPI_Comm, BoltROM **);
+PetscErrorCode BoltROMSetFromOptions(BoltROM *);
+PetscErrorCode BoltROMCheckOptions(BoltROM *, BoltContactSet *);
+PetscErrorCode BoltROMSetTraining(BoltROM *, const BoltPreloadState *, PetscInt, Vec[]);
+PetscErrorCode BoltROMSetUp(BoltROM *, BoltAssembler *, BoltContactSet *, BoltLoadSet *);
+PetscErrorCode BoltROMView(BoltROM *, PetscViewer);
 PetscErrorCode BoltROMDestroy(BoltROM **);
-PetscErrorCode BoltROMSave(BoltROM *, BV, BoltAssembler *, BoltLoadSet *, const char[]);
-PetscErrorCode BoltROMLoad(const char[], const BoltROMFingerprint *, PetscBool, BoltReductionOptions *, BoltContactSet *, BoltLoadSet *, BoltROM **, PetscBool *, char[], size_t);
+PetscErrorCode BoltROMGetFile(BoltROM *, const char *[]);
+PetscErrorCode BoltROMGetSnapshotModes(BoltROM *, PetscInt *);
+PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMSetPreloadState(BoltROM *, BoltNewmark *, PetscReal);
 PetscErrorCode BoltROMCheckAtS0(BoltROM *, BoltOperator *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscReal *);
 PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *);
@@ -740,9 +765,13 @@ typedef struct {
   char     field[16][BOLTROM_NAME_LEN];
   PetscInt fieldComponents[16];
   PetscBool fieldOnCells[16];
-  PetscInt  nsnap;              /* displacement snapshots, written as a temporal XDMF series */
-  PetscReal *snapTime;
-  PetscBool snapStates;         /* the series also holds the contact state at each snapshot */
+  PetscInt  nseries;            /* temporal XDMF series of displacement snapshots: the FOM's, the ROM's */
+  struct {
+    char       prefix[8];       /* of the series' fields: <prefix>snapshot_<i>, <prefix>contact_state_<i> */
+    PetscInt   n;
+    PetscReal *time;
+    PetscBool  states;          /* with the contact state at each snapshot */
+  } series[2];
 } BoltOutput;
 
 PetscErrorCode BoltOutputOpen(BoltMesh *, const char[], const char[], BoltOutput *);
@@ -750,9 +779,10 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *, BoltMesh *, Vec, const char[]
 PetscErrorCode BoltOutputClose(BoltOutput *, BoltMesh *);
 PetscErrorCode BoltOutputSeries(BoltOutput *, const char[], const char[], PetscInt, const PetscReal[]);
 PetscErrorCode BoltOutputPairForces(BoltOutput *, const char[], BoltContactSet *, PetscInt, const PetscReal[]);
-PetscErrorCode BoltOutputSnapshots(BoltOutput *, BoltMesh *, PetscInt, Vec[], const PetscReal[]);
+PetscErrorCode BoltOutputSnapshot(BoltOutput *, BoltMesh *, const char[], PetscInt, Vec);
+PetscErrorCode BoltOutputSnapshotSeries(BoltOutput *, const char[], PetscInt, const PetscReal[], PetscBool);
 PetscErrorCode BoltOutputContactState(BoltOutput *, BoltMesh *, BoltContactSet *, const unsigned char[], const char[]);
-PetscErrorCode BoltOutputSnapshotStates(BoltOutput *, BoltMesh *, BoltContactSet *, PetscInt, const unsigned char[]);
+PetscErrorCode BoltOutputSnapshotStates(BoltOutput *, BoltMesh *, const char[], BoltContactSet *, PetscInt, const unsigned char[]);
 
 /* JSON summary: a flat writer for the keys the README documents. */
 typedef struct {
@@ -785,6 +815,11 @@ typedef struct {
 PetscErrorCode BoltKeyIndexCreate(PetscInt, const PetscReal[], BoltKeyIndex *);
 PetscErrorCode BoltKeyIndexFind(BoltKeyIndex *, PetscInt, PetscInt *);
 PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *);
+/* Attributes of the root group "/" of an open HDF5 viewer's file (collective, same values on every rank) */
+PetscErrorCode BoltHDF5AttributeString(PetscViewer, const char[], const char[]);
+PetscErrorCode BoltHDF5AttributeStrings(PetscViewer, const char[], PetscInt, const char *const[]);
+PetscErrorCode BoltHDF5AttributeInt(PetscViewer, const char[], PetscInt);
+PetscErrorCode BoltHDF5AttributeReals(PetscViewer, const char[], PetscInt, const PetscReal[]);
 
 /* ------------------------------------------------------------------ solver.c */
 /* Direct solvers (PREONLY + LU or Cholesky) of the analyses, the reduction and the time
@@ -794,20 +829,6 @@ PetscErrorCode BoltDirectSolverCreate(MPI_Comm, const char[], Mat, PetscBool, Ma
 PetscErrorCode BoltDirectSolverSetFromOptions(MPI_Comm, const char[], PetscBool, MatSolverType);
 PetscErrorCode BoltModalSetFromOptions(MPI_Comm, PetscInt, const char[]); /* analysis.c */
 
-/* ------------------------------------------------------------------ reduction_object.c */
-/* The model reduction as configured: its options (-rom_*), the Krylov basis's (-krylov_*) and
-   those of its solvers, read once at the start whatever -rom says. Build runs BoltROMBuild. */
-typedef struct {
-  MPI_Comm             comm;
-  BoltReductionOptions opt;  /* with the Krylov options, opt.krylov */
-  PetscBool            view; /* -rom_view */
-} BoltReduction;
-
-PetscErrorCode BoltReductionCreate(MPI_Comm, BoltReduction **);
-PetscErrorCode BoltReductionSetFromOptions(BoltReduction *);
-PetscErrorCode BoltReductionView(BoltReduction *, PetscViewer);
-PetscErrorCode BoltReductionBuild(BoltReduction *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, const BoltPreloadState *, BoltROM **);
-PetscErrorCode BoltReductionDestroy(BoltReduction **);
 
 /* ------------------------------------------------------------------ run.c */
 /* What a run does and where it writes (main's options). */
@@ -830,7 +851,7 @@ PetscErrorCode BoltOptionsCheckUnused(MPI_Comm, BoltOptionsStage);
 PetscErrorCode BoltCheckWritableDir(MPI_Comm, const char[], const char[]);
 PetscErrorCode BoltCheckWritableParent(MPI_Comm, const char[], const char[]);
 PetscErrorCode BoltPreflightSetFromOptions(MPI_Comm, const BoltRunOptions *, char[]);
-PetscErrorCode BoltPreflightCheck(MPI_Comm, const BoltRunOptions *, const BoltReduction *, const char[]);
+PetscErrorCode BoltPreflightCheck(MPI_Comm, const BoltRunOptions *, BoltROM *, const char[]);
 
 /* ------------------------------------------------------------------ verify.c */
 /* Checks of the assembled model (-verify_fields, -check_rigid) and the export of the tied and
@@ -872,6 +893,9 @@ typedef struct {
 
 PetscErrorCode BoltSummaryWrite(MPI_Comm, const char[], const BoltSummary *);
 PetscErrorCode BoltSummaryWriteFields(const BoltSummary *, const char[], const char[]);
+/* metadata.c: the result file's root attributes and the summary's load and friction fields */
+PetscErrorCode BoltSummaryWriteAttributes(const BoltSummary *, PetscViewer);
+PetscErrorCode BoltSummaryWriteLoad(BoltJSON *, const BoltSummary *);
 
 /* ------------------------------------------------------------------ run.c (stages) */
 /* A run's objects, made and configured by main; sum collects what the stages report. */
@@ -882,7 +906,6 @@ typedef struct {
   BoltAssembler    *asmb;
   BoltContactSet   *contact;
   BoltLoadSet      *loads;
-  BoltReduction    *red;
   Vec               u;
   Mat               Ktied;
   BoltOperator     *fomOp, *romOp;

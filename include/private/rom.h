@@ -26,10 +26,13 @@ PetscErrorCode BoltNodePairVectorAlong(PetscInt a, PetscInt b, const PetscReal d
 PetscErrorCode BoltNodePairVector(PetscInt a, PetscInt b, PetscInt d, Vec v);
 PetscErrorCode BoltNodePairPatterns(MPI_Comm comm, PetscInt npair, const PetscInt pairs[], const PetscReal dirs[], PetscInt stride, PetscInt nsnap, Vec snap[], PetscInt kmax, PetscInt *kout, PetscReal **patterns);
 PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscBool keepActive, PetscReal openingScale, PetscInt nOpenKrylov, const BoltPreloadState *shared, PetscInt nsnap, Vec snap[], PetscInt *nextra, Vec **extrap, Vec *preload);
-PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom);
-PetscBool BoltROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact);
-PetscErrorCode ROMResolveSettings(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscBool *staticShapesOut, PetscReal *staticPenaltyScaleOut);
-PetscErrorCode ROMReuseFile(BoltReductionOptions *o, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscLogDouble t0, BoltROM **romp);
+PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads);
+PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact);
+PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0, PetscBool *reused);
+PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0);
+PetscErrorCode ROMOnlineDestroy(BoltROM *rom);
+PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet *loads, const char file[]);
+PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, BoltLoadSet *loads, PetscBool *matched, char why[], size_t whylen);
 PetscErrorCode BoltROMFingerprintInt(BoltROMFingerprint *, const char[], PetscInt);
 PetscErrorCode BoltROMFingerprintReal(BoltROMFingerprint *, const char[], PetscReal);
 PetscErrorCode BoltROMFingerprintString(BoltROMFingerprint *, const char[], const char[]);

@@ -18,10 +18,9 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscCall(BoltContactSetSetFromOptions(r->contact));
   PetscCall(BoltLoadSetCreate(r->mesh, &r->loads));
   PetscCall(BoltLoadSetSetFromOptions(r->loads));
-  PetscCall(BoltReductionCreate(r->comm, &r->red));
-  PetscCall(BoltReductionSetFromOptions(r->red));
-  PetscCheck(!(r->opt.rom && r->red->opt.coneShapes > 0) || r->contact->law.friction, r->comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes needs a frictional law: add -contact_law coulomb (the %s law has no cone)", r->contact->lawType);
-  PetscCheck(!(r->opt.rom && r->red->opt.coneModes > 0) || (r->red->opt.coneShapes > 0 && r->red->opt.nSnapshotModes > 0), r->comm, PETSC_ERR_USER_INPUT, "-rom_cone_modes compresses cone shapes with a training run's snapshots: add -rom_cone_shapes r and -rom_snapshot_modes k");
+  PetscCall(BoltROMCreate(r->comm, &r->rom));
+  PetscCall(BoltROMSetFromOptions(r->rom));
+  if (r->opt.rom) PetscCall(BoltROMCheckOptions(r->rom, r->contact));
   PetscCall(BoltPreflightSetFromOptions(r->comm, &r->opt, checkpointBase));
   PetscFunctionReturn(0);
 }
@@ -66,7 +65,6 @@ static PetscErrorCode BoltRunDestroy(BoltRun *r)
   PetscCall(BoltOperatorDestroy(&r->romOp));
   PetscCall(BoltROMDestroy(&r->rom));
   PetscCall(BoltOperatorDestroy(&r->fomOp));
-  PetscCall(BoltReductionDestroy(&r->red));
   PetscCall(BoltLoadSetDestroy(&r->loads));
   PetscCall(BoltContactSetDestroy(&r->contact));
   PetscCall(BoltAssemblerDestroy(&r->asmb));
@@ -97,7 +95,7 @@ static PetscErrorCode BoltRunMain(void)
     PetscCall(BoltRunDestroy(&r));
     PetscFunctionReturn(0);
   }
-  PetscCall(BoltPreflightCheck(r.comm, &r.opt, r.red, checkpointBase));
+  PetscCall(BoltPreflightCheck(r.comm, &r.opt, r.rom, checkpointBase));
   PetscCall(BoltRunSetUp(&r));
   PetscCall(BoltOptionsCheckUnused(r.comm, BOLT_OPTIONS_BEFORE_SOLVE)); /* the per-pair options too */
   PetscCall(PetscLogStagePop());

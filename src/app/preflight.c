@@ -164,23 +164,28 @@ PetscErrorCode BoltPreflightSetFromOptions(MPI_Comm comm, const BoltRunOptions *
 /* Before the model is set up: every option has been read (save those read later, see above) and
    every folder the run writes can be written. The summary's and the ROM file's folders are then
    made, as the files themselves are written without making one. */
-PetscErrorCode BoltPreflightCheck(MPI_Comm comm, const BoltRunOptions *o, const BoltReduction *red, const char checkpointBase[])
+PetscErrorCode BoltPreflightCheck(MPI_Comm comm, const BoltRunOptions *o, BoltROM *rom, const char checkpointBase[])
 {
+  const char *romFile;
+  PetscInt    snapshotModes;
+
   PetscFunctionBeginUser;
+  PetscCall(BoltROMGetFile(rom, &romFile));
+  PetscCall(BoltROMGetSnapshotModes(rom, &snapshotModes));
   PetscCall(BoltOptionsCheckUnused(comm, BOLT_OPTIONS_BEFORE_SETUP));
   if (o->writeOutput) PetscCall(BoltCheckWritableDir(comm, o->outputDir, "-output_dir"));
   if (o->summary[0]) PetscCall(BoltCheckWritableParent(comm, o->summary, "-summary"));
-  if (o->rom && red->opt.file[0]) PetscCall(BoltCheckWritableParent(comm, red->opt.file, "-rom_file"));
+  if (o->rom && romFile[0]) PetscCall(BoltCheckWritableParent(comm, romFile, "-rom_file"));
   if (checkpointBase[0]) PetscCall(BoltCheckWritableParent(comm, checkpointBase, "the checkpoints (-checkpoint_file)"));
   if (o->exportDir[0]) PetscCall(BoltCheckWritableDir(comm, o->exportDir, "-export_matrices"));
-  if (o->rom && red->opt.nSnapshotModes > 0) { /* the modes come from this run's FOM, or from a ROM file built with them */
+  if (o->rom && snapshotModes > 0) { /* the modes come from this run's FOM, or from a ROM file built with them */
     PetscInt  every = 0;
     PetscBool fileThere = PETSC_FALSE;
     PetscCall(PetscOptionsGetInt(NULL, NULL, "-snapshot_every", &every, NULL));
-    if (red->opt.file[0]) PetscCall(PetscTestFile(red->opt.file, 'r', &fileThere));
+    if (romFile[0]) PetscCall(PetscTestFile(romFile, 'r', &fileThere));
     PetscCheck((o->fom && every > 0) || fileThere, comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's displacement snapshots of the same run: add -fom true -snapshot_every 1, or give a -rom_file built with them");
   }
   if (o->summary[0]) PetscCall(BoltMakeParentDir(comm, o->summary));
-  if (o->rom && red->opt.file[0]) PetscCall(BoltMakeParentDir(comm, red->opt.file));
+  if (o->rom && romFile[0]) PetscCall(BoltMakeParentDir(comm, romFile));
   PetscFunctionReturn(0);
 }

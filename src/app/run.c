@@ -136,13 +136,9 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   BoltSummary *s = &r->sum;
 
   PetscFunctionBeginUser;
-  if (r->fomNm) { /* the FOM's snapshots, for -rom_snapshot_modes */
-    r->red->opt.nFomSnapshots = r->fomNm->nsnap;
-    r->red->opt.fomSnapshots  = r->fomNm->snap;
-  }
-  PetscCall(BoltReductionBuild(r->red, r->asmb, r->contact, r->loads, r->fomPreload, &r->rom));
-  r->red->opt.nFomSnapshots = 0;
-  r->red->opt.fomSnapshots  = NULL;
+  /* the FOM's preloaded state and snapshots (for -rom_snapshot_modes), if it ran */
+  PetscCall(BoltROMSetTraining(r->rom, r->fomPreload, r->fomNm ? r->fomNm->nsnap : 0, r->fomNm ? r->fomNm->snap : NULL));
+  PetscCall(BoltROMSetUp(r->rom, r->asmb, r->contact, r->loads));
   PetscCall(BoltPreloadStateDestroy(&r->fomPreload));
   PetscCall(BoltROMOperatorCreate(r->rom, &r->romOp));
   if (r->opt.romCheckS0) PetscCall(BoltROMCheckAtS0(r->rom, r->romOp, r->asmb, r->contact, r->loads, &s->romCheckError));

@@ -43,7 +43,7 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *d, PetscInt outer, PetscInt inn
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rmin, P, MPIU_REAL, MPI_MIN, d->op->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rmax, 2 * P, MPIU_REAL, MPI_MAX, d->op->comm));
   char fric[40] = "";
-  if (s->law.friction) PetscCall(PetscSNPrintf(fric, sizeof(fric), " friction %.3e", (double)s->frictionChange));
+  if (BoltContactStateHasFriction(s)) PetscCall(PetscSNPrintf(fric, sizeof(fric), " friction %.3e", (double)s->frictionChange));
   PetscCall(PetscPrintf(d->op->comm, "  %s step %" PetscInt_FMT " outer %3" PetscInt_FMT ": inner %4" PetscInt_FMT " change %.3e pen %.3e%s | changed %" PetscInt_FMT " active %" PetscInt_FMT "%s |", d->op->name, d->step, outer, inner, (double)d->lastChange, (double)d->lastPenetration, fric, nchanged, s->nactive, cycling ? " CYCLING" : ""));
   for (PetscInt p = 0; p < c->npairs; p++)
     if (cnt[2 * p] || cnt[2 * p + 1]) PetscCall(PetscPrintf(d->op->comm, " %s -%" PetscInt_FMT " +%" PetscInt_FMT " at r %.2f..%.2f mm, active to %.2f mm;", c->pairName[p], cnt[2 * p], cnt[2 * p + 1], (double)(1e3 * rmin[p]), (double)(1e3 * rmax[p]), (double)(1e3 * rmax[P + p])));

@@ -272,3 +272,19 @@ PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
   PetscCall(PetscLogEventEnd(boltLog.contactAssembly, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
+
+void BoltContactStateTrialOf(const BoltContactState *s, PetscInt gp, const PetscReal lambda[3], const PetscReal g[3], PetscReal t[3])
+{
+  const PetscInt pair = s->set->elem[gp / 4].pair;
+
+  s->law.traction(lambda, g, &s->set->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+}
+
+PetscErrorCode BoltContactStateElementStiffness(BoltContactState *s, PetscInt e, PetscReal Ke[576])
+{
+  BoltContactSet *c = s->set;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], BoltContactStateStickStiffness(s, c->elem[e].pair), &s->active[4 * e], &s->released[4 * e], BoltContactStateSlipDirs(s, e), Ke));
+  PetscFunctionReturn(0);
+}

@@ -93,14 +93,14 @@ PetscErrorCode BoltROMFingerprintScene(BoltAssembler *asmb, BoltContactSet *c, B
   }
   PetscCall(BoltROMFingerprintString(fp, "contact_law", c->lawType));
   PetscCall(BoltROMFingerprintString(fp, "contact_quadrature", c->quadrature == BOLT_QUADRATURE_NODAL ? "nodal" : "gauss"));
-  PetscCall(BoltROMFingerprintInt(fp, "contact_reclose_stick", c->law.strict && c->reanchor));
+  PetscCall(BoltROMFingerprintInt(fp, "contact_reclose_stick", BoltContactSetIsComplementarity(c) && c->reanchor));
   for (PetscInt p = 0; p < c->npairs; p++) {
     PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_penalty", c->pairName[p]));
     PetscCall(BoltROMFingerprintReal(fp, key, c->epsN[p]));
     PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_friction", c->pairName[p]));
-    PetscCall(BoltROMFingerprintReal(fp, key, c->law.friction ? c->friction[p] : 0));
+    PetscCall(BoltROMFingerprintReal(fp, key, BoltContactSetHasFriction(c) ? c->friction[p] : 0));
     PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_stick_stiffness", c->pairName[p]));
-    PetscCall(BoltROMFingerprintReal(fp, key, c->law.friction ? c->stickStiffness[p] : 0));
+    PetscCall(BoltROMFingerprintReal(fp, key, BoltContactSetHasFriction(c) ? c->stickStiffness[p] : 0));
   }
   PetscFunctionReturn(0);
 }

@@ -201,27 +201,20 @@ static PetscErrorCode ROMOrthogonality(BoltROM *rom, BV V)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM **romp)
+/* Builds the basis and projects the model onto it, in rom (its settings resolved). */
+PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0)
 {
-  BoltROM       *rom;
-  BoltKrylov    *kry;
-  BoltInterface *ir = NULL;
-  BV             B, V;
-  Mat            C;
-  Vec            preloadCalibrated = NULL; /* the preload layer forces that clamp with -preload_force */
-  PetscLogDouble t0, t1, t2, t3;
-  PetscBool      staticShapes       = PETSC_FALSE;
-  PetscReal      staticPenaltyScale = 0;
+  BoltReductionOptions *o   = &rom->opt;
+  BoltKrylov           *kry = o->krylov;
+  BoltInterface        *ir  = NULL;
+  BV                    B, V;
+  Mat                   C;
+  Vec                   preloadCalibrated = NULL; /* the preload layer forces that clamp with -preload_force */
+  PetscLogDouble        t1, t2, t3;
+  PetscBool             staticShapes       = rom->staticShapes;
+  PetscReal             staticPenaltyScale = rom->staticPenaltyScale;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t0));
-  PetscCall(PetscNew(&rom));
-  PetscCall(ROMResolveSettings(o, asmb, contact, loads, rom, &staticShapes, &staticPenaltyScale));
-  kry = o->krylov;
-  if (o->file[0]) {
-    PetscCall(ROMReuseFile(o, contact, loads, rom, t0, romp));
-    if (*romp) PetscFunctionReturn(0);
-  }
   /* built here: the snapshot modes, and the cone modes in the static solves, read this run's snapshots */
   PetscCheck(o->nSnapshotModes == 0 || o->nFomSnapshots > 1, o->comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's snapshots of the same run: add -fom true -snapshot_every k");
   PetscCall(BoltAssemblerDamping(asmb, &C));
@@ -284,10 +277,6 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
     for (PetscInt k = 0; k < nmodes; k++) PetscCall(VecDestroy(&modes[k]));
     PetscCall(PetscFree(modes));
   }
-  rom->bandScale  = BoltROMDefaultBand(o, contact, rom);
-  rom->updateRank = o->updateRank;
-  rom->holdUnmarked = BoltROMDefaultHold(o, contact);
-  rom->gapsEverywhere = o->gapsEverywhere;
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;
@@ -321,44 +310,6 @@ PetscErrorCode BoltROMBuild(BoltReductionOptions *o, BoltAssembler *asmb, BoltCo
   if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file));
   PetscCall(BVDestroy(&V));
   PetscCall(MatDestroy(&C));
-  *romp = rom;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode BoltROMDestroy(BoltROM **romp)
-{
-  BoltROM *rom = *romp;
-
-  PetscFunctionBeginUser;
-  if (!rom) PetscFunctionReturn(0);
-  PetscCall(MatDestroy(&rom->Mr));
-  PetscCall(MatDestroy(&rom->Cr));
-  PetscCall(MatDestroy(&rom->Kr));
-  PetscCall(MatDestroy(&rom->Kcr));
-  PetscCall(VecDestroy(&rom->loadr));
-  PetscCall(VecDestroy(&rom->loadUnitr));
-  PetscCall(VecDestroy(&rom->preloadr));
-  PetscCall(PetscFree(rom->Vc));
-  PetscCall(PetscFree(rom->Vprobe));
-  PetscCall(PetscFree(rom->Ke));
-  PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
-  PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
-  /* grown one by one (BoltGrowReal), so freed one by one: PetscFree3 frees a coalesced block */
-  PetscCall(PetscFree(rom->kcrSend));
-  PetscCall(PetscFree(rom->kcrRecv));
-  PetscCall(PetscFree(rom->kcrDT));
-  PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
-  PetscCall(PetscFree2(rom->Rn, rom->gnRow));
-  PetscCall(BoltExactSumDestroy(&rom->sum));
-  PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
-  PetscCall(PetscFree(rom->marked));
-  PetscCall(BoltROMUpdateDestroy(&rom->update));
-  PetscCall(PetscFree2(rom->fAcc, rom->fParts));
-  PetscCall(PetscFree6(rom->npSlotStart, rom->npGlobalOf, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
-  PetscCall(PetscFree2(rom->npRowsAll, rom->npOfPoint));
-  PetscCall(PetscSFDestroy(&rom->npSF));
-  PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));
-  PetscCall(PetscFree(*romp));
   PetscFunctionReturn(0);
 }
 

@@ -115,6 +115,37 @@ static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* Frees the online caches the operator made in the ROM (idempotent: the ROM may make another). */
+PetscErrorCode ROMOnlineDestroy(BoltROM *rom)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&rom->Kcr));
+  PetscCall(PetscFree(rom->Ke));
+  PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
+  PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
+  /* grown one by one (BoltGrowReal), so freed one by one: PetscFree3 frees a coalesced block */
+  PetscCall(PetscFree(rom->kcrSend));
+  PetscCall(PetscFree(rom->kcrRecv));
+  PetscCall(PetscFree(rom->kcrDT));
+  PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
+  PetscCall(PetscFree2(rom->Rn, rom->gnRow));
+  PetscCall(BoltExactSumDestroy(&rom->sum));
+  PetscCall(BoltROMUpdateDestroy(&rom->update));
+  PetscCall(PetscFree2(rom->fAcc, rom->fParts));
+  PetscCall(PetscFree6(rom->npSlotStart, rom->npGlobalOf, rom->npDMax, rom->npSlotF, rom->npF, rom->npFSum));
+  PetscCall(PetscFree2(rom->npRowsAll, rom->npOfPoint));
+  PetscCall(PetscSFDestroy(&rom->npSF));
+  PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ROMOperatorDestroy(BoltOperator *op)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ROMOnlineDestroy((BoltROM *)op->ctx));
+  PetscFunctionReturn(0);
+}
+
 /* The ROM's operator: its matrices, and its own contact state with the ROM's law, penalties and
    opening band. */
 PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
@@ -141,6 +172,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   op->ops.stateSave            = ROMStateSave;
   op->ops.stateLoad            = ROMStateLoad;
   op->ops.view                 = ROMView;
+  op->ops.destroy              = ROMOperatorDestroy;
   PetscCall(BoltContactStateSetPenaltyScale(op->state, rom->penaltyScale, rom->bandScale));
 /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
@@ -175,9 +207,6 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(ROMSetUpGapRows(rom, op->state->mayChange));
   op->ops.contactGaps  = ROMContactGaps;
   op->ops.openTraction = ROMOpenTraction;
-  /* low-rank updates of the factorisation: by default where the active set is expected to move
-     (the strict law's penalty ROM); the stick law's keeps refactorising, as in the paper */
-  rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (rom->contact->law.strict && !rom->augment ? (3 * n) / 5 : 0);
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
   PetscCall(ROMSetUpPairForces(rom, op->state->mayChange));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));
@@ -204,19 +233,18 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
      already the trial tractions of its last solve); the ROM's penalty is s P, so the frozen
      multipliers take lambda0 - (s - 1) P g0, or lambda0 - s P g0: the ROM's traction there is
      the FOM's, its penalty acts on increments */
-  const PetscReal g0Share = s->law.strict ? 1.0 : 1 - 1 / rom->penaltyScale;
+  const PetscReal g0Share = BoltContactStateIsComplementarity(s) ? 1.0 : 1 - 1 / rom->penaltyScale;
 
   PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0)); /* sliding points first: their traction is normal */
   BoltContactStateSetAnchors(s, NULL); /* the FOM's anchors are in the frozen multipliers (raw gaps g0) */
   for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt  gp = 4 * e + q;
       PetscReal lam[3], g[3];
       /* open in the preload: no traction, and none frozen here. Under friction none anywhere: the
          normal is the penalty's alone, and the ROM solves its own preloaded state on the FOM's set
          (its pairs stick or slip there as the FOM's did) */
-      if (!rom->active0[gp] || s->law.friction) {
+      if (!rom->active0[gp] || BoltContactStateHasFriction(s)) {
         s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
         continue;
       }
@@ -224,15 +252,14 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
         lam[k] = rom->lambda0[3 * gp + k] * preloadForce;
         g[k]   = -g0Share * rom->gap0[3 * gp + k] * preloadForce;
       }
-      s->law.traction(lam, g, &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), &s->lambda[3 * gp]);
+      BoltContactStateTrialOf(s, gp, lam, g, &s->lambda[3 * gp]);
     }
   }
   BoltContactStateChanged(s);
-  nm->calibratePreload = PETSC_FALSE;
   /* the static state is the FOM's by construction: its active set is not judged again there
      (under the ROM's stiffer penalty, points at the rim whose traction is within the band of
      zero would open on gap differences of a fraction of a nanometre) */
-  nm->dual->keepActiveSet = PETSC_TRUE;
+  PetscCall(BoltNewmarkKeepGivenPreload(nm));
   PetscFunctionReturn(0);
 }
 

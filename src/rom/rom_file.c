@@ -326,29 +326,27 @@ static PetscErrorCode ROMLoadContactRows(BoltROM *rom, BoltContactSet *c, BoltLo
   PetscFunctionReturn(0);
 }
 
-/* Loads a matching ROM file. *matched is false (and nothing is loaded) when the fingerprint
-   differs; *why then says what differs first. */
-PetscErrorCode BoltROMLoad(const char file[], const BoltROMFingerprint *fingerprint, PetscBool preloadState, BoltReductionOptions *o, BoltContactSet *c, BoltLoadSet *loads, BoltROM **romp, PetscBool *matched, char why[], size_t whylen)
+/* Reads a matching ROM file into rom (its settings resolved). *matched is false (and nothing is
+   read) when the fingerprint differs; *why then says what differs first. */
+PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, BoltLoadSet *loads, PetscBool *matched, char why[], size_t whylen)
 {
+  BoltReductionOptions *o    = &rom->opt;
   MPI_Comm     comm = o->comm;
   PetscViewer  v;
   char        *groups = NULL, *input = NULL;
   PetscInt     n, npts = 0;
   PetscScalar *a, *Vpoints;
-  BoltROM     *rom;
   PetscBool    same;
 
   PetscFunctionBeginUser;
   *matched = PETSC_FALSE;
   PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, file, FILE_MODE_READ, &v));
-  PetscCall(BoltROMFingerprintMatch(fingerprint, v, matched, why, whylen));
+  PetscCall(BoltROMFingerprintMatch(&rom->fingerprint, v, matched, why, whylen));
   if (!*matched) {
     PetscCall(PetscViewerDestroy(&v));
     PetscFunctionReturn(0);
   }
   *matched = PETSC_FALSE;
-  PetscCall(PetscNew(&rom));
-  rom->comm     = comm;
   rom->contact  = c;
   rom->fromFile = PETSC_TRUE;
   rom->orthogonality = -1;
@@ -442,12 +440,11 @@ PetscErrorCode BoltROMLoad(const char file[], const BoltROMFingerprint *fingerpr
     PetscCall(PetscFree(Vpoints));
   }
   PetscCall(ROMLoadContactRows(rom, c, loads, v, file));
-  if (preloadState) PetscCall(BoltROMLoadPreloadState(rom, c, v, file));
+  if (rom->preloadState) PetscCall(BoltROMLoadPreloadState(rom, c, v, file));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscFree(groups));
   PetscCall(PetscFree(input));
   PetscCall(PetscViewerDestroy(&v));
-  *romp    = rom;
   *matched = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

@@ -43,7 +43,7 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
      reads their gaps) once, for gaps that stay defined */
   ROMRowsTimes(rom->heldRowsDone && !rom->gapsEverywhere ? rom->nLiveRows : rom->nGapRows, rom->n, rom->Rn, rom->nGapRows, x, rom->gnRow);
   rom->heldRowsDone = PETSC_TRUE;
-  whole = (PetscBool)(c->law.strict && c->reanchor && !rom->wholeRows && c->quadrature == BOLT_QUADRATURE_NODAL);
+  whole = (PetscBool)(BoltContactSetIsComplementarity(c) && c->reanchor && !rom->wholeRows && c->quadrature == BOLT_QUADRATURE_NODAL);
   for (PetscInt j = 0; j < rom->n && whole; j++) xmax = PetscMax(xmax, PetscAbsReal(PetscRealPart(x[j])));
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     const PetscInt  *r = &rom->gpRows[4 * gp];
@@ -92,7 +92,7 @@ PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
   const PetscInt    ngp = 4 * c->nelem;
 
   PetscFunctionBeginUser;
-  if (s->augment || s->law.friction || (s->openTest == BOLT_OPEN_NODAL && !(c->quadrature == BOLT_QUADRATURE_NODAL && rom->flat))) {
+  if (s->augment || BoltContactStateHasFriction(s) || (s->openTest == BOLT_OPEN_NODAL && !(c->quadrature == BOLT_QUADRATURE_NODAL && rom->flat))) {
     PetscCall(BoltContactStateOpenTraction(s, tn));
     PetscFunctionReturn(0);
   }
@@ -100,12 +100,11 @@ PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
     for (PetscInt pass = 0; pass < 2; pass++) {
       PetscReal *out = pass ? rom->tnK : rom->tnC;
       for (PetscInt gp = 0; gp < ngp; gp++) {
-        const PetscInt   pair = c->elem[gp / 4].pair;
         const PetscReal *n    = &c->gpNormal[3 * gp], zero[3] = {0, 0, 0};
         PetscReal       *t    = &c->tau[3 * gp];
         if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
         else if (!pass) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
-        else s->law.traction(zero, n, n, s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+        else BoltContactStateTrialOf(s, gp, zero, n, t);
       }
       if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, out));
       else
@@ -163,7 +162,7 @@ PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
   }
   PetscCall(MPIU_Allreduce(&flat, &rom->flat, 1, MPIU_BOOL, MPI_LAND, rom->comm));
   /* friction reads the tangential gaps too (the augmented ROM takes u_c = V_c q instead) */
-  rom->wholeRows = (PetscBool)(!rom->flat || c->law.friction);
+  rom->wholeRows = (PetscBool)(!rom->flat || BoltContactSetHasFriction(c));
   width          = rom->wholeRows ? 3 : 1;
   /* each point's gap is its own node pair's: the pairs' owners make them (ROMSetUpPairForces) */
   rom->pairGaps = (PetscBool)(rom->wholeRows && c->quadrature == BOLT_QUADRATURE_NODAL && !rom->augment);

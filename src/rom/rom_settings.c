@@ -1,9 +1,7 @@
 /* The ROM's settings: every default of the reduction resolved from its options and the scene,
    the fingerprint of what the basis depends on, and the reuse of a matching ROM file. */
 #include "private/rom.h"
-#include <petscblaslapack.h>
 #include "boltrom_krylov.h"
-#include "boltrom_interface.h"
 
 /* The ROM's activation band (the tension at which a closed point opens), relative to the FOM's.
    Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
@@ -16,10 +14,10 @@
    opening shapes, or snapshot modes of the FOM's run, it can open the pairs the load opens, and
    keeps the strict band (docs/reduction.md).
    Which applies is known once the basis is. */
-PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom)
+static PetscReal ROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom)
 {
   if (o->bandScale > 0) return o->bandScale;
-  return contact->law.strict && !rom->augment && rom->nOpeningPairs == 0 && rom->nSnapshotModes == 0 ? 2e5 : 1.0;
+  return BoltContactSetIsComplementarity(contact) && !rom->augment && rom->nOpeningPairs == 0 && rom->nSnapshotModes == 0 ? 2e5 : 1.0;
 }
 
 /* Whether the points outside the opening shapes keep their preloaded state online: yes, unless
@@ -27,9 +25,9 @@ PetscReal BoltROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, B
    the dynamic response, and the basis gives it some room to (level 0.5, 20 kN and a 300 N step,
    mu 0.1: held, e_L2 1.2e-3 and 5.2 % less dissipation than the FOM; free, 1.6e-4 and 0.7 %; the
    same on two other scenes either way). */
-PetscBool BoltROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact)
+static PetscBool ROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact)
 {
-  return o->holdUnmarkedSet ? o->holdUnmarked : (PetscBool)!contact->law.friction;
+  return o->holdUnmarkedSet ? o->holdUnmarked : (PetscBool)!BoltContactSetHasFriction(contact);
 }
 
 /* The reduction's part of the fingerprint: the static shapes and modes in the basis, each
@@ -57,14 +55,14 @@ static PetscErrorCode ROMFingerprintShapes(BoltReductionOptions *o, BoltROM *rom
 
 /* The ROM's settings from the reduction's options and the scene (each default resolved here),
    and the fingerprint of what its basis depends on. */
-PetscErrorCode ROMResolveSettings(BoltReductionOptions *o, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscBool *staticShapesOut, PetscReal *staticPenaltyScaleOut)
+PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads)
 {
-  BoltKrylov *kry;
-  PetscBool   staticShapes;
-  PetscReal   staticPenaltyScale;
+  BoltReductionOptions *o = &rom->opt;
+  BoltKrylov           *kry;
+  PetscBool             staticShapes;
+  PetscReal             staticPenaltyScale;
 
   PetscFunctionBeginUser;
-  rom->comm        = o->comm;
   rom->contact     = contact;
   rom->rayleigh[0] = asmb->rayleighAlpha; /* C_r = V' C V (a ROM file holds the same: its fingerprint has them) */
   rom->rayleigh[1] = asmb->rayleighBeta;
@@ -91,56 +89,57 @@ PetscErrorCode ROMResolveSettings(BoltReductionOptions *o, BoltAssembler *asmb, 
      interface reduction has every node pair's force among its inputs; the stick law's scenes are
      the paper's, whose figures stay as they were) */
   /* ... and none by default with snapshot modes, which carry the openings and slips the FOM made */
-  rom->openingScale = staticShapes ? (o->openingScaleSet ? o->openingScale : (contact->law.strict && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
+  rom->openingScale = staticShapes ? (o->openingScaleSet ? o->openingScale : (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
   rom->nOpenKrylov  = rom->openingScale > 0 ? o->nOpenKrylov : 0;
-  rom->slipScale    = rom->openingScale > 0 && contact->law.friction ? o->slipScale : 0;
-  rom->coneShapes   = staticShapes && rom->preloadState && contact->law.friction ? o->coneShapes : 0;
+  rom->slipScale    = rom->openingScale > 0 && BoltContactSetHasFriction(contact) ? o->slipScale : 0;
+  rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) ? o->coneShapes : 0;
   rom->coneTraction = o->coneTraction;
   rom->coneModes    = rom->coneShapes > 0 ? o->coneModes : 0;
   staticPenaltyScale = o->staticPenaltyScale > 0 ? o->staticPenaltyScale : PetscMax(1.0, 2e6 / contact->penaltyFactor); /* 2e6 E/m */
   PetscCall(ROMFingerprintShapes(o, rom, staticShapes, staticPenaltyScale));
-  *staticShapesOut       = staticShapes;
-  *staticPenaltyScaleOut = staticPenaltyScale;
+  rom->staticShapes       = staticShapes;
+  rom->staticPenaltyScale = staticPenaltyScale;
   PetscFunctionReturn(0);
 }
 
-/* The ROM of -rom_file when the file exists and its fingerprint matches (*romp set, rom freed);
-   else an error, or a note that it is rebuilt (-rom_rebuild). */
-PetscErrorCode ROMReuseFile(BoltReductionOptions *o, BoltContactSet *contact, BoltLoadSet *loads, BoltROM *rom, PetscLogDouble t0, BoltROM **romp)
+/* Reads -rom_file into rom when the file exists and its fingerprint matches (*reused); else an
+   error, or a note that it is rebuilt (-rom_rebuild). */
+PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0, PetscBool *reused)
 {
-  PetscLogDouble t3;
-  PetscBool      exists, matched;
-  char           why[256];
+  BoltReductionOptions *o = &rom->opt;
+  PetscLogDouble        t3;
+  PetscBool             exists;
+  char                  why[256];
 
   PetscFunctionBeginUser;
-  *romp = NULL;
+  *reused = PETSC_FALSE;
   PetscCall(PetscTestFile(o->file, 'r', &exists));
-  if (exists) {
-    BoltROM *loaded = NULL;
-    PetscCall(BoltROMLoad(o->file, &rom->fingerprint, rom->preloadState, o, contact, loads, &loaded, &matched, why, sizeof(why)));
-    if (matched) {
-      PetscCall(PetscTime(&t3));
-      loaded->tOffline = t3 - t0;
-      loaded->augment  = rom->augment;
-      loaded->rayleigh[0] = rom->rayleigh[0];
-      loaded->rayleigh[1] = rom->rayleigh[1];
-      loaded->penaltyScale = rom->penaltyScale;
-      loaded->nClosed      = rom->nClosed;
-      loaded->openingScale = rom->openingScale;
-      loaded->nOpenKrylov  = rom->nOpenKrylov;
-      loaded->slipScale    = rom->slipScale;
-      loaded->bandScale    = BoltROMDefaultBand(o, contact, loaded);
-      loaded->updateRank   = o->updateRank;
-      loaded->holdUnmarked = BoltROMDefaultHold(o, contact);
-      loaded->gapsEverywhere = o->gapsEverywhere;
-      loaded->fingerprint  = rom->fingerprint;
-      PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, loaded->n));
-      PetscCall(PetscFree(rom));
-      *romp = loaded;
-      PetscFunctionReturn(0);
-    }
-    PetscCheck(o->rebuild, o->comm, PETSC_ERR_USER_INPUT, "ROM file %s does not match this scene (%s): remove it, point -rom_file elsewhere, or let it be rebuilt with -rom_rebuild", o->file, why);
-    PetscCall(PetscPrintf(o->comm, "ROM file %s does not match this scene (%s): rebuilding it\n", o->file, why));
+  if (!exists) PetscFunctionReturn(0);
+  PetscCall(BoltROMLoad(o->file, rom, contact, loads, reused, why, sizeof(why)));
+  if (*reused) {
+    PetscCall(PetscTime(&t3));
+    rom->tOffline = t3 - t0;
+    PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, rom->n));
+    PetscFunctionReturn(0);
   }
+  PetscCheck(o->rebuild, o->comm, PETSC_ERR_USER_INPUT, "ROM file %s does not match this scene (%s): remove it, point -rom_file elsewhere, or let it be rebuilt with -rom_rebuild", o->file, why);
+  PetscCall(PetscPrintf(o->comm, "ROM file %s does not match this scene (%s): rebuilding it\n", o->file, why));
+  PetscFunctionReturn(0);
+}
+
+/* The online settings, which depend on the basis: the activation band, which points are held,
+   the largest low-rank update of the factorisation. Low-rank updates by default where the
+   active set is expected to move (the strict law's penalty ROM); the stick law's keeps
+   refactorising, as in the paper. */
+PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact)
+{
+  BoltReductionOptions *o = &rom->opt;
+
+  PetscFunctionBeginUser;
+  rom->bandScale      = ROMDefaultBand(o, contact, rom);
+  rom->updateRank     = o->updateRank;
+  rom->holdUnmarked   = ROMDefaultHold(o, contact);
+  rom->gapsEverywhere = o->gapsEverywhere;
+  rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (BoltContactSetIsComplementarity(contact) && !rom->augment ? (3 * rom->n) / 5 : 0);
   PetscFunctionReturn(0);
 }

@@ -162,7 +162,7 @@ PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscReal *d = &delta[144 * ndirty], size = 0;
     if (!s->dirty[e]) continue;
-    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], BoltContactStateStickStiffness(s, c->elem[e].pair), &s->active[4 * e], &s->released[4 * e], BoltContactStateSlipDirs(s, e), Knew));
+    PetscCall(BoltContactStateElementStiffness(s, e, Knew));
     for (PetscInt a = 0; a < 12; a++)
       for (PetscInt b = 0; b < 12; b++) {
         d[12 * a + b]                 = Knew[24 * a + b] - rom->Ke[144 * e + 12 * a + b];

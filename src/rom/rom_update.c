@@ -315,7 +315,7 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
     PetscReal *cur = &u->Kcur[144 * e];
     if (!s->dirty[e]) continue;
     s->dirty[e] = PETSC_FALSE;
-    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], BoltContactStateStickStiffness(s, c->elem[e].pair), &s->active[4 * e], &s->released[4 * e], BoltContactStateSlipDirs(s, e), Knew));
+    PetscCall(BoltContactStateElementStiffness(s, e, Knew));
     for (PetscInt a = 0; a < 12; a++)
       for (PetscInt b = 0; b < 12; b++) cur[12 * a + b] = Knew[24 * a + b];
     if (rom->DeMax[e] == 0) { /* both sides clamped: nothing of it reaches the ROM */

@@ -155,7 +155,7 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
      beyond the cone at the swing's own size is narrower than the zone that slips (on a 300 N
      sine along x at level 0.5, shapes at twice the load left the ROM 9.5 % short of the FOM's
      dissipation per cycle; at four times, 0.3 %) */
-  if (s->law.friction && rom->slipScale > 0 && rom->slipScale != openingScale)
+  if (BoltContactStateHasFriction(s) && rom->slipScale > 0 && rom->slipScale != openingScale)
     for (PetscInt sign = -1; sign <= 1; sign += 2) {
       PetscCall(VecCopy(op->preload, rhs));
       PetscCall(VecAXPY(rhs, sign * rom->slipScale / raise, op->load));
@@ -167,7 +167,7 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
     PetscCall(VecAXPY(rhs, sign * openingScale / raise, op->load));
     PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
     for (PetscInt k = 0; k < 4 * c->nelem; k++) changed[k] = (PetscBool)(changed[k] || s->active[k] != rom->active0[k]);
-    if (s->law.friction) BoltMarkBeyondCone(s, changed);
+    if (BoltContactStateHasFriction(s)) BoltMarkBeyondCone(s, changed);
   }
   PetscCall(BoltNodePairs(c, changed, &npairs, &pairs));
   PetscCall(PetscFree(rom->marked));
@@ -183,9 +183,9 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
     PetscCall(VecCopy(rhs, base)); /* the + solve's right-hand side and state */
     PetscCall(VecCopy(q, q2));
     PetscCall(PetscMalloc1(nOpenKrylov, &openK));
-    dual->keepActiveSet = PETSC_TRUE;
+    PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     PetscCall(BoltStaticKrylov(dual, asmb->M, base, q2, response, 1e-3 * npre, nOpenKrylov, "opened-joint", work, rhs, q, openK));
-    dual->keepActiveSet = PETSC_FALSE;
+    PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_FALSE));
     PetscCall(VecDestroy(&base));
     PetscCall(VecDestroy(&q2));
     PetscCall(VecDestroy(&work));
@@ -248,7 +248,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
   extra = all;
   if (!(keepActive && nClosed > 0)) { /* else the closed-contact vectors' last solve factored K + K_c of the preloaded set */
     PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
-    dual->keepActiveSet = PETSC_TRUE;
+    PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     PetscCall(BoltDualSolveStatic(dual, op->preload, q, 0, &nout, &nin));
   }
   for (PetscInt i = 0; i < npairs; i++)
@@ -349,7 +349,7 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
      shed and take moves their cone: on the joint at level 0.5, a ROM that was 16 - 52 % over in
      the last bursts at 10 - 30 N came within 2.5 % with these) and along their tangential traction
      (with both, within 1.5 %; with the traction alone no nearer) */
-  if (rom->coneShapes > 0 && s->law.friction) PetscCall(ROMConePairs(c, rom, &nConePairs, &conePairs, &coneDirs));
+  if (rom->coneShapes > 0 && BoltContactStateHasFriction(s)) PetscCall(ROMConePairs(c, rom, &nConePairs, &conePairs, &coneDirs));
   /* closed-contact Krylov vectors: w_k = static response, from the preloaded state, to M w_(k-1),
      so the basis holds the closed joint's low-frequency shapes too. Forced at 1e-3 of the
      preload's norm: small enough that the joint stays closed, large enough to rise above the
@@ -362,7 +362,7 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
     PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)nforce, (double)nload, (double)npre));
     if (keepActive) {
       PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
-      dual->keepActiveSet = PETSC_TRUE;
+      PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     }
     /* op->load, this solve's own copy, is the forcing of each vector in turn */
     PetscCall(BoltStaticKrylov(dual, asmb->M, op->preload, extra[0], extra[1], nforce, nClosed, "closed-contact", op->load, rhs, q, &extra[2]));

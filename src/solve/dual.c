@@ -73,7 +73,7 @@ PetscErrorCode BoltDualSetUp(BoltDual *d)
   Mat           Kc, Z;
 
   PetscFunctionBeginUser;
-  if (op->state->law.strict && !d->tolPenetrationSet) d->tolPenetration = op->contact->gapTolerance;
+  if (BoltContactStateIsComplementarity(op->state) && !d->tolPenetrationSet) d->tolPenetration = op->contact->gapTolerance;
   PetscCall(MatCreateVecs(op->K, &d->Fc, NULL));
   PetscCall(VecDuplicate(d->Fc, &d->work));
   PetscCall(VecDuplicate(d->Fc, &d->qp));
@@ -206,18 +206,18 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     if (d->keepActiveSet && !d->dynamic) {
       cycling = PETSC_FALSE;
       nchanged = 0;
-      if (s->law.friction && !s->stickOnly) { /* the set kept; its closed pairs still stick or slip (a ROM's preload, as the FOM's) */
+      if (BoltContactStateHasFriction(s) && !s->stickOnly) { /* the set kept; its closed pairs still stick or slip (a ROM's preload, as the FOM's) */
         s->holdContact = PETSC_TRUE;
         PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
         s->holdContact = PETSC_FALSE;
       }
     } else PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, sets, solves, nchanged, cycling));
-    if (!nchanged && viol <= d->tolPenetration && (!s->law.friction || s->frictionChange <= d->tolFriction)) break;
+    if (!nchanged && viol <= d->tolPenetration && (!BoltContactStateHasFriction(s) || s->frictionChange <= d->tolFriction)) break;
     /* friction at its rounding floor: the set holds, and the slipping tractions' residual, within
        ten times the tolerance, has not halved in five solves (a reduced model's gaps, differences
        of basis rows, are that much less precise than the full model's) */
-    if (s->law.friction && !nchanged && viol <= d->tolPenetration) {
+    if (BoltContactStateHasFriction(s) && !nchanged && viol <= d->tolPenetration) {
       if (s->frictionChange < 0.5 * frictionBest) {
         frictionBest = s->frictionChange;
         frictionStall = 0;
@@ -232,7 +232,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
       d->failures++;
       char friction[160] = "";
 
-      if (s->law.friction) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", and the slipping pairs' tractions move by %.3e of the largest pressure (tolerance %.1e: -contact_tol_friction)", (double)s->frictionChange, (double)d->tolFriction));
+      if (BoltContactStateHasFriction(s)) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", and the slipping pairs' tractions move by %.3e of the largest pressure (tolerance %.1e: -contact_tol_friction)", (double)s->frictionChange, (double)d->tolFriction));
       PetscCheck(d->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: the contact loop did not converge at step %" PetscInt_FMT ", t = %g s: after %" PetscInt_FMT " solves and %" PetscInt_FMT " active sets, %" PetscInt_FMT " pairs changed and a closed pair is off its contact by %.3e m (tolerance %.1e)%s; raise -contact_max_outer / -contact_max_inner or add -contact_continue to go on with a warning", op->name, d->step, (double)d->time, solves, sets, nchanged, (double)viol, (double)d->tolPenetration, friction);
       PetscCall(PetscPrintf(comm, "WARNING %s: contact loop not converged at step %" PetscInt_FMT ", t = %g s; going on\n", op->name, d->step, (double)d->time));
       if (refactor) PetscCall(BoltDualFactor(d)); /* the next step starts consistent */
@@ -350,6 +350,14 @@ PetscErrorCode BoltDualReleaseSolver(BoltDual *d)
   if (d->ksp) PetscCall(KSPReset(d->ksp));
   PetscCall(MatDestroy(&d->Keff));
   PetscCall(MatDestroy(&d->Kstruct));
+  PetscFunctionReturn(0);
+}
+
+/* Whether a static solve keeps the active set it is given (a time step judges it always). */
+PetscErrorCode BoltDualSetKeepActiveSet(BoltDual *d, PetscBool keep)
+{
+  PetscFunctionBeginUser;
+  d->keepActiveSet = keep;
   PetscFunctionReturn(0);
 }
 

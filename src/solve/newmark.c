@@ -161,7 +161,7 @@ static PetscErrorCode BoltNewmarkEnergy(BoltNewmark *nm, PetscReal amp, PetscRea
   PetscFunctionBeginUser;
   PetscCall(VecDot(nm->v, nm->Mv, &ek));
   PetscCall(VecDot(nm->q, nm->Kq, &es));
-  if (!op->state->law.strict) {
+  if (BoltContactStateHasPenaltyEnergy(op->state)) {
     PetscCall(op->ops.contactStiffness(op, &Kc));
     PetscCall(MatMult(Kc, nm->q, nm->work));
     PetscCall(VecDot(nm->q, nm->work, &ec));
@@ -284,7 +284,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0], &ek, &es));
   PetscCall(BoltNewmarkLedger(nm, 0, 0, 0, ek, es));
   if (op->contact->npairs) PetscCall(BoltContactStatePairForces(op->state, nm->pairForce));
-  if (op->state->law.friction) { /* the pairs the preload left slipping */
+  if (BoltContactStateHasFriction(op->state)) { /* the pairs the preload left slipping */
     PetscInt nslip;
     PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
     nm->slipping[0] = (PetscReal)nslip;
@@ -331,7 +331,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     PetscCall(VecWAXPY(nm->dq, -1.0, qOld, nm->q));
     PetscCall(BoltNewmarkLedger(nm, n, BoltLoadAmplitude(nm, t - nm->dt), amp, ek, es));
     if (op->contact->npairs) PetscCall(BoltContactStatePairForces(op->state, &nm->pairForce[BOLT_PAIR_FORCE * op->contact->npairs * n]));
-    if (op->state->law.friction) {
+    if (BoltContactStateHasFriction(op->state)) {
       PetscInt nslip;
       PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
       nm->slipping[n] = (PetscReal)nslip;
@@ -373,6 +373,16 @@ PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *nm)
   PetscFunctionBeginUser;
   PetscCall(BoltDualReleaseSolver(nm->dual));
   PetscCall(BoltContactStateReleaseStiffness(nm->op->state));
+  PetscFunctionReturn(0);
+}
+
+/* The operator's contact state already holds the preloaded state (handed over by another
+   model): the static start neither calibrates the preload nor judges that active set again. */
+PetscErrorCode BoltNewmarkKeepGivenPreload(BoltNewmark *nm)
+{
+  PetscFunctionBeginUser;
+  nm->calibratePreload = PETSC_FALSE;
+  PetscCall(BoltDualSetKeepActiveSet(nm->dual, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 

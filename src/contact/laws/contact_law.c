@@ -97,3 +97,33 @@ PetscErrorCode BoltContactLawSetType(MPI_Comm comm, const char type[], BoltConta
   PetscCall((*create)(law));
   PetscFunctionReturn(0);
 }
+
+PetscBool BoltContactSetHasFriction(const BoltContactSet *c)
+{
+  return c->law.friction;
+}
+
+PetscBool BoltContactSetIsComplementarity(const BoltContactSet *c)
+{
+  return c->law.strict;
+}
+
+PetscBool BoltContactStateHasFriction(const BoltContactState *s)
+{
+  return s->law.friction;
+}
+
+PetscBool BoltContactStateIsComplementarity(const BoltContactState *s)
+{
+  return s->law.strict;
+}
+
+PetscBool BoltContactStateHasPenaltyEnergy(const BoltContactState *s)
+{
+  return (PetscBool)!s->law.strict;
+}
+
+PetscBool BoltContactStateLambdaIsTraction(const BoltContactState *s)
+{
+  return (PetscBool)(s->law.strict && (s->augment || s->law.friction));
+}

@@ -1,27 +1,28 @@
-/* The model reduction as an object configured up front: the reduction's options (-rom_*), the
-   Krylov basis's (-krylov_*) and those of the solvers of the offline phase are read once, at the
-   start of every run whatever -rom says (a scene file may carry the ROM's settings while the ROM
-   is switched off), so that a wrong one stops the run before any computation. BoltReductionBuild
-   then runs the builder, BoltROMBuild (reduction.c). */
-#include "boltrom.h"
+/* The ROM's life cycle. Create; SetFromOptions reads the reduction's options (-rom_*), the
+   Krylov basis's (-krylov_*) and those of the offline solvers once, at the start of every run
+   whatever -rom says (a scene file may carry the ROM's settings while the ROM is switched off),
+   so that a wrong one stops the run before any computation; SetUp resolves every default and
+   builds the ROM (reduction.c) or reads a matching ROM file (rom_file.c); View prints the
+   settings used; Destroy frees it all. The online operator (rom.c) owns its caches. */
+#include "private/rom.h"
 
-PetscErrorCode BoltReductionCreate(MPI_Comm comm, BoltReduction **redp)
+PetscErrorCode BoltROMCreate(MPI_Comm comm, BoltROM **romp)
 {
-  BoltReduction *red;
+  BoltROM *rom;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscNew(&red));
-  red->comm     = comm;
-  red->opt.comm = comm;
-  PetscCall(BoltKrylovCreate(comm, &red->opt.krylov));
-  *redp = red;
+  PetscCall(PetscNew(&rom));
+  rom->comm     = comm;
+  rom->opt.comm = comm;
+  PetscCall(BoltKrylovCreate(comm, &rom->opt.krylov));
+  *romp = rom;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
+PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
 {
-  MPI_Comm              comm = red->comm;
-  BoltReductionOptions *o    = &red->opt;
+  MPI_Comm              comm = rom->comm;
+  BoltReductionOptions *o    = &rom->opt;
 
   PetscFunctionBeginUser;
   o->file[0]     = '\0';
@@ -32,7 +33,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   o->fomPreload = NULL;
   o->nFomSnapshots = 0;
   o->fomSnapshots  = NULL;
-  red->view     = PETSC_FALSE;
+  rom->view     = PETSC_FALSE;
   PetscOptionsBegin(comm, NULL, "Reduction", "boltrom");
   PetscCall(PetscOptionsString("-rom_file", "ROM file (HDF5) to reuse if it matches, or to write", NULL, o->file, o->file, sizeof(o->file), NULL));
   PetscCall(PetscOptionsInt("-rom_n_ccm", "Interface reduction: characteristic constraint mode vectors (0 and -rom_n_jim 0: no interface reduction)", NULL, o->nCCM, &o->nCCM, NULL));
@@ -78,7 +79,7 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscCall(PetscOptionsReal("-rom_snapshot_tol", "With -rom_snapshot_modes: keep a mode only if its singular value is above this fraction of the snapshots' largest (their remainders' against the basis)", NULL, o->snapshotTol, &o->snapshotTol, NULL));
   o->bandScale = 0;
   PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (a wider band helps on fine meshes and where the load opens the joint, and costs accuracy in paper-step: docs/results.md; default 1, or 2e5 for an interface-reduced ROM under the strict law without opening shapes or snapshot modes: its own band is its solver tolerance)", NULL, o->bandScale, &o->bandScale, NULL));
-  PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, red->view, &red->view, NULL));
+  PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, rom->view, &rom->view, NULL));
   PetscOptionsEnd();
   PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
   PetscCheck(o->staticPenaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_static_penalty_scale must be > 0 (got %g)", (double)o->staticPenaltyScale);
@@ -108,40 +109,101 @@ PetscErrorCode BoltReductionSetFromOptions(BoltReduction *red)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltReductionView(BoltReduction *red, PetscViewer viewer)
+/* The cross-checks of the ROM's options that need the contact law, made before any computation. */
+PetscErrorCode BoltROMCheckOptions(BoltROM *rom, BoltContactSet *contact)
 {
-  BoltReductionOptions *o = &red->opt;
+  BoltReductionOptions *o = &rom->opt;
+
+  PetscFunctionBeginUser;
+  PetscCheck(o->coneShapes == 0 || BoltContactSetHasFriction(contact), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes needs a frictional law: add -contact_law coulomb (the %s law has no cone)", contact->lawType);
+  PetscCheck(o->coneModes == 0 || (o->coneShapes > 0 && o->nSnapshotModes > 0), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_modes compresses cone shapes with a training run's snapshots: add -rom_cone_shapes r and -rom_snapshot_modes k");
+  PetscFunctionReturn(0);
+}
+
+/* What the FOM of this run hands the offline phase, or NULL and 0: its preloaded state (else
+   solved offline) and its displacement snapshots (for -rom_snapshot_modes). Referenced until
+   SetUp returns. */
+PetscErrorCode BoltROMSetTraining(BoltROM *rom, const BoltPreloadState *fomPreload, PetscInt nsnap, Vec snap[])
+{
+  PetscFunctionBeginUser;
+  rom->opt.fomPreload    = fomPreload;
+  rom->opt.nFomSnapshots = nsnap;
+  rom->opt.fomSnapshots  = snap;
+  PetscFunctionReturn(0);
+}
+
+/* Resolves every default from the options, the scene and (for the online settings) the basis,
+   then builds the ROM or reads a matching -rom_file. */
+PetscErrorCode BoltROMSetUp(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads)
+{
+  PetscLogDouble t0;
+  PetscBool      reused = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(ROMResolveSettings(rom, asmb, contact, loads));
+  if (rom->opt.file[0]) PetscCall(ROMReuseFile(rom, contact, loads, t0, &reused));
+  if (!reused) PetscCall(ROMBuild(rom, asmb, contact, loads, t0));
+  PetscCall(ROMResolveOnline(rom, contact));
+  PetscCall(BoltROMSetTraining(rom, NULL, 0, NULL)); /* the caller frees them */
+  if (rom->view) PetscCall(BoltROMView(rom, PETSC_VIEWER_STDOUT_(rom->comm)));
+  PetscFunctionReturn(0);
+}
+
+/* The settings used: the options as resolved by SetUp (before it, the options as given). */
+PetscErrorCode BoltROMView(BoltROM *rom, PetscViewer viewer)
+{
+  BoltReductionOptions *o = &rom->opt;
   BoltKrylov           *k = o->krylov;
   PetscBool             iascii;
 
   PetscFunctionBeginUser;
-  if (!viewer) viewer = PETSC_VIEWER_STDOUT_(red->comm);
+  if (!viewer) viewer = PETSC_VIEWER_STDOUT_(rom->comm);
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
   if (!iascii) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "Reduction: Krylov order %" PetscInt_FMT ", s0 %g rad/s, block size %" PetscInt_FMT ", deflation tol %g; interface reduction CCM %" PetscInt_FMT " + JIM %" PetscInt_FMT "%s\n", k->order, (double)k->s0, k->blockSize, (double)k->deflationTol, o->nCCM, o->nJIM, o->nCCM + o->nJIM ? "" : " (none)"));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  file %s (%s), contact law %s, preload state %s, closed-contact Krylov %" PetscInt_FMT " (%s), static shapes %s\n", o->file[0] ? o->file : "(none)", o->rebuild ? "rebuilt if it does not match" : "refused if it does not match", o->augmentSet ? (o->augment ? "augmented" : "penalty") : "default", PetscBools[o->preloadState], o->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free", PetscBools[o->staticShapes]));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  penalty scale %g, band scale %g (0: default), static penalty scale %g\n", (double)o->penaltyScale, (double)o->bandScale, (double)o->staticPenaltyScale));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  opening shapes at %g x the load%s (slip shapes at %g x), %" PetscInt_FMT " opened-joint Krylov; snapshot modes %" PetscInt_FMT " above %g; cone shapes at %g of the cone%s, %" PetscInt_FMT " cone modes per direction (0: a shape per pair)\n", (double)o->openingScale, o->openingScaleSet ? "" : " (the law's default)", (double)o->slipScale, o->nOpenKrylov, o->nSnapshotModes, (double)o->snapshotTol, (double)o->coneShapes, o->coneTraction ? " (normal and traction)" : " (normal)", o->coneModes));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "ROM: Krylov order %" PetscInt_FMT ", s0 %g rad/s, block size %" PetscInt_FMT ", deflation tol %g; CCM %" PetscInt_FMT " + JIM %" PetscInt_FMT "\n", k->order, (double)k->s0, k->blockSize, (double)k->deflationTol, o->nCCM, o->nJIM));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  file %s (%s)\n", o->file[0] ? o->file : "(none)", o->rebuild ? "rebuilt if it does not match" : "refused if it does not match"));
+  if (!rom->contact) PetscFunctionReturn(0); /* not set up: only the options as given */
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  dimension %" PetscInt_FMT " (%s), contact %s, preload state %s, static shapes %s\n", rom->n, rom->fromFile ? "from the file" : "built", rom->augment ? "augmented" : "penalty", PetscBools[rom->preloadState], PetscBools[rom->staticShapes]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  penalty scale %g, band scale %g, static penalty scale %g\n", (double)rom->penaltyScale, (double)rom->bandScale, (double)rom->staticPenaltyScale));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  closed-contact Krylov %" PetscInt_FMT " (%s), opening shapes at %g x the load, %" PetscInt_FMT " opened-joint Krylov, slip shapes at %g x\n", rom->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free", (double)rom->openingScale, rom->nOpenKrylov, (double)rom->slipScale));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  cone shapes at %g (%s), %" PetscInt_FMT " cone modes; snapshot modes %" PetscInt_FMT " above %g\n", (double)rom->coneShapes, rom->coneTraction ? "normal and traction" : "normal", rom->coneModes, o->nSnapshotModes, (double)o->snapshotTol));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  online: largest low-rank update %" PetscInt_FMT " (0: refactorise), unmarked points %s, gaps everywhere %s\n", rom->updateRankUsed, rom->holdUnmarked ? "held" : "free", PetscBools[rom->gapsEverywhere]));
   PetscFunctionReturn(0);
 }
 
-/* The reduced model of the scene: built, or read from -rom_file when that matches. fomPreload: the
-   FOM's preloaded state of this run, or NULL (the offline phase then solves it). */
-PetscErrorCode BoltReductionBuild(BoltReduction *red, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, const BoltPreloadState *fomPreload, BoltROM **rom)
+PetscErrorCode BoltROMGetFile(BoltROM *rom, const char *file[])
 {
   PetscFunctionBeginUser;
-  if (red->view) PetscCall(BoltReductionView(red, PETSC_VIEWER_STDOUT_(red->comm)));
-  red->opt.fomPreload = fomPreload;
-  PetscCall(BoltROMBuild(&red->opt, asmb, contact, loads, rom));
-  red->opt.fomPreload = NULL; /* the caller frees it */
+  *file = rom->opt.file;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltReductionDestroy(BoltReduction **redp)
+PetscErrorCode BoltROMGetSnapshotModes(BoltROM *rom, PetscInt *n)
 {
   PetscFunctionBeginUser;
-  if (!*redp) PetscFunctionReturn(0);
-  PetscCall(BoltKrylovDestroy(&(*redp)->opt.krylov));
-  PetscCall(PetscFree(*redp));
+  *n = rom->opt.nSnapshotModes;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltROMDestroy(BoltROM **romp)
+{
+  BoltROM *rom = *romp;
+
+  PetscFunctionBeginUser;
+  if (!rom) PetscFunctionReturn(0);
+  PetscCall(ROMOnlineDestroy(rom)); /* if no operator freed them */
+  PetscCall(MatDestroy(&rom->Mr));
+  PetscCall(MatDestroy(&rom->Cr));
+  PetscCall(MatDestroy(&rom->Kr));
+  PetscCall(VecDestroy(&rom->loadr));
+  PetscCall(VecDestroy(&rom->loadUnitr));
+  PetscCall(VecDestroy(&rom->preloadr));
+  PetscCall(PetscFree(rom->Vc));
+  PetscCall(PetscFree(rom->Vprobe));
+  PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
+  PetscCall(PetscFree(rom->marked));
+  PetscCall(BoltKrylovDestroy(&rom->opt.krylov));
+  PetscCall(PetscFree(*romp));
   PetscFunctionReturn(0);
 }
