@@ -25,7 +25,7 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
   }
   PetscCall(BoltJSONInt(j, "failures", nm->dual->failures));
   PetscCall(BoltJSONInt(j, "cycles", nm->dual->cycles));
-  if (full && nm->op->state->law.strict && nm->op->state->augment) {
+  if (full && BoltContactStateIsComplementarity(nm->op->state) && nm->op->state->augment) {
     /* one-sided contact after every converged step of the transient: penetration relative to
        the shortest contact-face edge, the largest tension of a closed pair and the largest
        |t.n g.n|, relative to the largest compression (times that edge) */
@@ -76,7 +76,7 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
     PetscCall(BoltJSONReal(j, "strain_change", L[BOLT_LEDGER_STRAIN * N + e] - L[BOLT_LEDGER_STRAIN * N]));
     PetscCall(BoltJSONReal(j, "rayleigh", L[BOLT_LEDGER_RAYLEIGH * N + e]));
     PetscCall(BoltJSONReal(j, "contact_work", L[BOLT_LEDGER_CONTACT * N + e]));
-    if (nm->op->state->law.friction) {
+    if (BoltContactStateHasFriction(nm->op->state)) {
       PetscReal stick;
       PetscCall(BoltContactStateStickEnergy(nm->op->state, &stick));
       PetscCall(BoltJSONReal(j, "friction", nm->dissipated[e]));
@@ -120,7 +120,7 @@ static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIIn
   PetscCall(BoltJSONInt(j, "free_dofs", mesh->ndofsFree));
   PetscCall(BoltJSONInt(j, "contact_dofs", contact->contactDofs));
   PetscCall(BoltJSONString(j, "contact_law", contact->lawType));
-  if (contact->law.strict) PetscCall(BoltJSONString(j, "contact_reclose", contact->reanchor ? "stick" : "slide"));
+  if (BoltContactSetIsComplementarity(contact)) PetscCall(BoltJSONString(j, "contact_reclose", contact->reanchor ? "stick" : "slide"));
   PetscCall(BoltJSONReal(j, "contact_gap_tolerance", contact->gapTolerance));
   PetscCall(SummaryNamed(j, "contact_dofs_per_pair", contact->npairs, contact->pairName, contact->contactDofsPerPair, NULL));
   PetscCall(SummaryNamed(j, "contact_elements_per_pair", contact->npairs, contact->pairName, contact->elementsPerPair, NULL));
@@ -299,7 +299,7 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
       for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(&h5, "/fom/energy_accounting", rows[r], fom->nsteps + 1, &fom->ledger[r * (fom->nsteps + 1)]));
     }
     PetscCall(BoltOutputPairForces(&h5, "/fom", fom->op->contact, fom->nsteps + 1, fom->pairForce));
-    if (fom->op->state->law.friction) {
+    if (BoltContactStateHasFriction(fom->op->state)) {
       PetscCall(BoltOutputSeries(&h5, "/fom", "slipping", fom->nsteps + 1, fom->slipping));
       PetscCall(BoltOutputSeries(&h5, "/fom", "dissipated", fom->nsteps + 1, fom->dissipated));
     }
@@ -318,7 +318,7 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
       for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(&h5, "/rom/energy_accounting", rows[r], rom->nsteps + 1, &rom->ledger[r * (rom->nsteps + 1)]));
     }
     PetscCall(BoltOutputPairForces(&h5, "/rom", rom->op->contact, rom->nsteps + 1, rom->pairForce));
-    if (rom->op->state->law.friction) {
+    if (BoltContactStateHasFriction(rom->op->state)) {
       PetscCall(BoltOutputSeries(&h5, "/rom", "slipping", rom->nsteps + 1, rom->slipping));
       PetscCall(BoltOutputSeries(&h5, "/rom", "dissipated", rom->nsteps + 1, rom->dissipated));
     }
