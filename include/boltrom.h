@@ -115,22 +115,17 @@ typedef struct {
 enum { BOLT_OPEN_NODAL = 0, BOLT_OPEN_GAUSS = 1 };
 enum { BOLT_QUADRATURE_GAUSS = 0, BOLT_QUADRATURE_NODAL = 1 };
 
-/* The contact law at a contact point (contact_law.c), a registered type: the trial traction of
-   a multiplier and a gap under the pair's penalties, and what the law needs of the geometry and
-   of the loop. A frictional law adds its own entries beside these. */
-typedef struct {
-  void (*traction)(const PetscReal lambda[3], const PetscReal g[3], const PetscReal n[3], PetscReal epsN, PetscReal epsT, PetscReal t[3]);
-  PetscBool strict;        /* complementarity at every node pair (nodal quadrature, no band), solved
-                              by the active-set loop; else the banded Gauss-point law of the paper */
-  PetscReal penaltyFactor; /* default -contact_penalty_factor: a physical penalty (banded law) or
-                              the augmentation parameter of the active-set loop (strict law) */
-  PetscBool friction;      /* Coulomb friction at closed pairs (-contact_friction): a closed pair
-                              sticks inside the cone |t_T| <= mu |t_N| and slips on it */
-} BoltContactLaw;
+/* A contact law (src/contact/laws/, one file per law), a registered type: an ops table of what
+   the law does at one contact point (trial traction, return map, stiffness block, convergence
+   measure, point code, energy terms) and its properties; its body is the contact module's
+   (include/private/contact.h). Other modules ask the set or the state (BoltContactSetHasFriction
+   and the like below). */
+typedef struct _p_BoltContactLaw BoltContactLaw;
 extern PetscFunctionList BoltContactLawList;
 PetscErrorCode BoltContactLawRegister(const char[], PetscErrorCode (*)(BoltContactLaw *));
 PetscErrorCode BoltContactLawRegisterAll(void);
-PetscErrorCode BoltContactLawSetType(MPI_Comm, const char[], BoltContactLaw *);
+PetscErrorCode BoltContactLawCreate(MPI_Comm, const char[], BoltContactLaw **);
+PetscErrorCode BoltContactLawDestroy(BoltContactLaw **);
 
 /* The contact geometry, shared by every model: pairs, matched elements, Gauss-point data, the
    local contact vector and its scatter, and the defaults of the law each model's state starts
@@ -159,7 +154,7 @@ typedef struct {
   BoltContactElement *elem;
   /* defaults of the law (-contact_*), copied into each new state */
   char                lawType[64];    /* -contact_law: a BoltContactLawList entry */
-  BoltContactLaw      law;            /* its functions and properties */
+  BoltContactLaw     *law;            /* its operations and properties (owned) */
   PetscBool           augment;        /* -contact_augment: augmented Lagrangian (false: pure penalty) */
   PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
   PetscInt            openTest;       /* BOLT_OPEN_NODAL: a closed point opens on its traction smoothed
@@ -187,7 +182,7 @@ typedef struct {
 typedef struct {
   BoltContactSet *set;
   char            lawType[64];
-  BoltContactLaw  law;
+  BoltContactLaw *law;            /* the set's */
   PetscBool       augment;        /* augmented Lagrangian (false: penalty, lambda fixed) */
   PetscReal       activationGap;
   PetscInt        openTest;
@@ -312,22 +307,6 @@ PetscBool BoltContactStateLambdaIsTraction(const BoltContactState *);
 void           BoltContactStateTrialOf(const BoltContactState *, PetscInt, const PetscReal[3], const PetscReal[3], PetscReal[3]);
 /* Element e's 24x24 stiffness of its active points under the state's law. */
 PetscErrorCode BoltContactStateElementStiffness(BoltContactState *, PetscInt, PetscReal[576]);
-/* The tangential penalty at point gp of a pair: none where the point slides (released). */
-static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt gp, PetscInt pair)
-{
-  return s->released[gp] ? 0 : (s->law.friction ? s->stickStiffness[pair] : s->epsT[pair]);
-}
-/* The tangential stiffness of a closed, sticking pair in K_c: the penalty, or under friction the
-   elastic stick. */
-static inline PetscReal BoltContactStateStickStiffness(const BoltContactState *s, PetscInt pair)
-{
-  return s->law.friction ? s->stickStiffness[pair] : s->epsT[pair];
-}
-/* Element e's slip directions for its stiffness (NULL: none, released points slide freely). */
-static inline const PetscReal *BoltContactStateSlipDirs(const BoltContactState *s, PetscInt e)
-{
-  return s->law.friction ? &s->slipDir[16 * e] : NULL;
-}
 
 /* ------------------------------------------------------------------ loads.c */
 typedef struct {
@@ -738,6 +717,7 @@ PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **);
    or reads a matching -rom_file; the online operator owns its caches. */
 PetscErrorCode BoltROMCreate(MPI_Comm, BoltROM **);
 PetscErrorCode BoltROMSetFromOptions(BoltROM *);
+PetscErrorCode BoltROMSolversSetFromOptions(BoltROM *);
 PetscErrorCode BoltROMCheckOptions(BoltROM *, BoltContactSet *);
 PetscErrorCode BoltROMSetTraining(BoltROM *, const BoltPreloadState *, PetscInt, Vec[]);
 PetscErrorCode BoltROMSetUp(BoltROM *, BoltAssembler *, BoltContactSet *, BoltLoadSet *);
@@ -749,6 +729,11 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMSetPreloadState(BoltROM *, BoltNewmark *, PetscReal);
 PetscErrorCode BoltROMCheckAtS0(BoltROM *, BoltOperator *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscReal *);
 PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *);
+/* rom_field.c: the ROM's displacement in full, u = V q, while the ROM keeps its whole basis (built in this run) */
+PetscErrorCode BoltROMKeepBasis(BoltROM *, BV);
+PetscErrorCode BoltROMHasBasis(BoltROM *, PetscBool *);
+PetscErrorCode BoltROMExpand(BoltROM *, Vec, Vec);
+PetscErrorCode BoltROMReleaseBasis(BoltROM *);
 
 /* ------------------------------------------------------------------ analysis.c */
 PetscErrorCode BoltStaticSolve(Mat, Vec, Vec, const char[]);

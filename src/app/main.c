@@ -1,6 +1,6 @@
 static const char help[] = "boltrom: vibration of bolted joints with contact, full and reduced order models.\n"
-                           "Usage: mpiexec -n 2 bin/boltrom -options_file inputs/tied-joint.yaml [-help] [-log_view]\n"
-                           "This stage builds the model, solves the tied joint statically and finds its eigenfrequencies.\n\n";
+                           "Usage: mpiexec -n 2 bin/boltrom -options_file SCENE.yaml [-option value ...] [-log_view]\n"
+                           "boltrom's own options first, by object; then those of the PETSc and SLEPc solvers it configures.\n\n";
 
 #include "boltrom.h"
 
@@ -22,6 +22,7 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscCall(BoltROMSetFromOptions(r->rom));
   if (r->opt.rom) PetscCall(BoltROMCheckOptions(r->rom, r->contact));
   PetscCall(BoltPreflightSetFromOptions(r->comm, &r->opt, checkpointBase));
+  PetscCall(BoltROMSolversSetFromOptions(r->rom)); /* PETSc's and SLEPc's options last: -help lists boltrom's first */
   PetscFunctionReturn(0);
 }
 
@@ -130,12 +131,20 @@ int main(int argc, char **argv)
      the command line is then inserted again so that it still overrides the files. */
   char **args = (char **)malloc(sizeof(char *) * (argc + 1)), *scenes[16];
   int    nargs = 0, nscenes = 0;
+  /* -help is kept from PETSc's start-up, which would print its own options first; set after it,
+     it lists boltrom's options first, then those of the solvers as they are configured */
+  int wantHelp = 0;
   for (int i = 0; i < argc; i++) {
     if (!strcmp(argv[i], "-options_file") && i + 1 < argc && nscenes < 16) scenes[nscenes++] = argv[++i];
+    else if (i > 0 && (!strcmp(argv[i], "-help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--help"))) wantHelp = 1;
     else args[nargs++] = argv[i];
   }
   args[nargs] = NULL;
   PetscCall(SlepcInitialize(&nargs, &args, NULL, help));
+  if (wantHelp) {
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", help));
+    PetscCall(PetscOptionsSetValue(NULL, "-help", NULL));
+  }
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   for (int k = 0; k < nscenes; k++) {

@@ -145,11 +145,6 @@ PetscErrorCode BoltPreflightSetFromOptions(MPI_Comm comm, const BoltRunOptions *
   BoltNewmark *nm;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltDirectSolverSetFromOptions(comm, "static_", PETSC_FALSE, MATSOLVERMUMPS));
-  PetscCall(BoltModalSetFromOptions(comm, o->nev, "modal_"));
-  /* K_eff: the FOM's is symmetric (Cholesky by MUMPS), the ROM's dense (LU by PETSc) */
-  PetscCall(BoltDirectSolverSetFromOptions(comm, "fom_", PETSC_TRUE, MATSOLVERMUMPS));
-  PetscCall(BoltDirectSolverSetFromOptions(comm, "rom_", PETSC_FALSE, MATSOLVERPETSC));
   stub.comm = comm; /* the FOM's and the ROM's integrators read the same options */
   stub.name = "FOM";
   PetscCall(PetscStrncpy(stub.prefix, "fom_", sizeof(stub.prefix)));
@@ -158,6 +153,11 @@ PetscErrorCode BoltPreflightSetFromOptions(MPI_Comm comm, const BoltRunOptions *
   PetscCall(BoltNewmarkSetFromOptions(nm));
   PetscCall(PetscStrncpy(checkpointBase, nm->checkpointEvery > 0 ? nm->checkpointBase : "", PETSC_MAX_PATH_LEN));
   PetscCall(BoltNewmarkDestroy(&nm));
+  PetscCall(BoltDirectSolverSetFromOptions(comm, "static_", PETSC_FALSE, MATSOLVERMUMPS));
+  PetscCall(BoltModalSetFromOptions(comm, o->nev, "modal_"));
+  /* K_eff: the FOM's is symmetric (Cholesky by MUMPS), the ROM's dense (LU by PETSc) */
+  PetscCall(BoltDirectSolverSetFromOptions(comm, "fom_", PETSC_TRUE, MATSOLVERMUMPS));
+  PetscCall(BoltDirectSolverSetFromOptions(comm, "rom_", PETSC_FALSE, MATSOLVERPETSC));
   PetscFunctionReturn(0);
 }
 

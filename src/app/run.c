@@ -26,7 +26,7 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
   PetscCall(PetscOptionsBool("-fom", "Run the full-order model with contact: static preload, then the Newmark transient", NULL, o->fom, &o->fom, NULL));
   PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));
-  PetscCall(PetscOptionsString("-export_matrices", "Folder for the tied stiffness and the mass matrix, full (K_tied.petsc, M.petsc) and, with -rom, reduced (rom_K_tied.petsc, rom_M.petsc), in PETSc binary format (python/compare_eigen.py reads them)", NULL, o->exportDir, o->exportDir, sizeof(o->exportDir), NULL));
+  PetscCall(PetscOptionsString("-export_matrices", "Folder for K_tied.petsc and M.petsc (with -rom also rom_K_tied.petsc, rom_M.petsc), PETSc binary; read by python/compare_eigen.py", NULL, o->exportDir, o->exportDir, sizeof(o->exportDir), NULL));
   PetscCall(PetscOptionsBool("-rom_check_s0", "Check the ROM against the FOM at s = s0 with every contact point active (exact for an order-1 ROM without interface reduction)", NULL, o->romCheckS0, &o->romCheckS0, NULL));
   PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
   PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));

@@ -33,7 +33,7 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscFunctionBeginUser;
   PetscCall(BoltContactLawRegisterAll());
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
-  PetscCall(PetscOptionsFList("-contact_law", "Contact law: strict (one-sided contact at every node pair, closed pairs stick; active-set loop), coulomb (strict, with Coulomb friction: closed pairs stick inside the cone and slip on it; -contact_friction) or stick (the paper's: Gauss points, opening band, penalty 200 E/m)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
+  PetscCall(PetscOptionsFList("-contact_law", "Contact law: strict (one-sided at every node pair, closed pairs stick), coulomb (strict with Coulomb friction) or stick (the paper's)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
   PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, law)); /* an unknown law fails here, before any solve */
   c->penaltyFactor = law->penaltyFactor;
   c->quadrature    = law->strict ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
@@ -48,15 +48,15 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscCall(PetscOptionsBool("-contact_augment", "Augmented Lagrangian (false: pure penalty, no multipliers)", NULL, c->augment, &c->augment, NULL));
   {
     const char *open[] = {"nodal", "gauss"};
-    PetscCall(PetscOptionsEList("-contact_open_test", "Stick law: when a closed point opens: nodal (its normal traction smoothed through the nodes, nodal force / nodal area, is tensile beyond the band) or gauss (its own multiplier is)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
+    PetscCall(PetscOptionsEList("-contact_open_test", "Stick law: a closed point opens when tensile beyond the band: nodal (traction smoothed through the nodes) or gauss (its own multiplier)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
   }
   if (c->activationGap < 0 && !law->strict) c->activationGap = 1e-7; /* strict: -1 until SetUp knows the mesh */
   PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m] (default: strict 1e-9 x the shortest contact-face edge, stick 1e-7)", NULL, c->activationGap, &c->activationGap, &set));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient of every pair (-contact_law coulomb; -contact_<pair>_friction sets one pair)", NULL, c->frictionDefault, &c->frictionDefault, &c->frictionSet));
-  PetscCall(PetscOptionsReal("-contact_slip_angle_tolerance", "Coulomb friction: K_c keeps a slipping pair's slip direction until its slip turns by more than this [rad] (a quasi-Newton step: the converged traction is on the cone along the slip whatever it is)", NULL, c->slipAngleTolerance, &c->slipAngleTolerance, NULL));
+  PetscCall(PetscOptionsReal("-contact_slip_angle_tolerance", "Coulomb: K_c keeps a slipping pair's slip direction until the slip turns by more than this [rad]", NULL, c->slipAngleTolerance, &c->slipAngleTolerance, NULL));
   PetscCall(PetscOptionsReal("-contact_slip_stiffness_ratio", "Coulomb friction: K_c takes a slipping pair's new stiffness across its slip (mu |t_N| / |slip|) once the one it has is off by more than this factor", NULL, c->slipStiffnessRatio, &c->slipStiffnessRatio, NULL));
-  PetscCall(PetscOptionsReal("-contact_stick_stiffness_factor", "Coulomb friction: tangential stiffness of a sticking pair (elastic stick, as the stick law's penalty and CalculiX's stick slope), x E of the softer part per metre [1/m]", NULL, c->stickFactor, &c->stickFactor, NULL));
+  PetscCall(PetscOptionsReal("-contact_stick_stiffness_factor", "Coulomb: tangential stiffness of a sticking pair (elastic stick), x E of the softer part, per metre [1/m]", NULL, c->stickFactor, &c->stickFactor, NULL));
   PetscOptionsEnd();
   PetscCheck(c->stickFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_stick_stiffness_factor must be > 0 (got %g)", (double)c->stickFactor);
   PetscCheck(c->slipStiffnessRatio > 1, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_stiffness_ratio must be > 1 (got %g)", (double)c->slipStiffnessRatio);

@@ -44,41 +44,41 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
   o->augment = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
   o->preloadState = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_preload_state", "ROM with the penalty law: start from the FOM's preloaded state, solved offline (its displacement and its closed-contact load response join the basis; its multipliers start the ROM's static solve, after which the penalty alone carries the contact: docs/reduction.md, 'Preloaded state')", NULL, o->preloadState, &o->preloadState, &o->preloadStateSet));
+  PetscCall(PetscOptionsBool("-rom_preload_state", "Penalty-law ROM: start from the FOM's preloaded state (its displacement and load response join the basis, its multipliers stay frozen)", NULL, o->preloadState, &o->preloadState, &o->preloadStateSet));
   o->penaltyScale = 0;
   o->nClosed = 3;
-  PetscCall(PetscOptionsInt("-rom_closed_krylov", "With -rom_preload_state or -rom_static_shapes: closed-contact Krylov vectors added after the load response (each the FOM's static response, contact closed, to the mass times the previous one)", NULL, o->nClosed, &o->nClosed, NULL));
-  PetscCall(PetscOptionsReal("-rom_contact_penalty_scale", "The ROM's contact penalties as a multiple of the FOM's (default with -rom_preload_state against an augmented FOM: 1e5 E/m, or 4e3 E/m with -rom_closed_krylov 0, over the FOM's penalty factor; else 1)", NULL, o->penaltyScale, &o->penaltyScale, NULL));
+  PetscCall(PetscOptionsInt("-rom_closed_krylov", "Closed-contact Krylov vectors after the load response (static responses, contact closed, to the mass times the previous one)", NULL, o->nClosed, &o->nClosed, NULL));
+  PetscCall(PetscOptionsReal("-rom_contact_penalty_scale", "The ROM's contact penalties, x the FOM's (0: resolved by SetUp; docs/decisions.md)", NULL, o->penaltyScale, &o->penaltyScale, NULL));
   o->staticPenaltyScale = 0; /* the default is resolved against the FOM's penalty when the ROM is built */
-  PetscCall(PetscOptionsReal("-rom_static_penalty_scale", "With -rom_preload_state: the penalty of the offline static solves from the preloaded state (load response, closed-contact Krylov vectors) as a multiple of the FOM's (default: 2e6 E/m over the FOM's penalty factor, at least 1); they converge to the same gap-free state, in fewer iterations the stiffer it is", NULL, o->staticPenaltyScale, &o->staticPenaltyScale, NULL));
+  PetscCall(PetscOptionsReal("-rom_static_penalty_scale", "Penalty of the offline static solves from the preloaded state, x the FOM's (0: 2e6 E/m over the FOM's factor, at least 1)", NULL, o->staticPenaltyScale, &o->staticPenaltyScale, NULL));
   o->closedKeepActive = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_closed_keep_active", "With -rom_closed_krylov: the closed-contact Krylov vectors keep the preloaded active set (false: their forcing may open and close points, as the load response's does)", NULL, o->closedKeepActive, &o->closedKeepActive, NULL));
+  PetscCall(PetscOptionsBool("-rom_closed_keep_active", "The closed-contact Krylov vectors keep the preloaded active set (false: their forcing may open and close points)", NULL, o->closedKeepActive, &o->closedKeepActive, NULL));
   o->staticShapes = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_static_shapes", "The augmented ROM (without interface reduction) too: the FOM's preloaded state, its load response and the -rom_closed_krylov vectors join the basis (they carry the closed joint's inertia, which order 1 misses without them)", NULL, o->staticShapes, &o->staticShapes, NULL));
+  PetscCall(PetscOptionsBool("-rom_static_shapes", "The augmented ROM (no interface reduction) also gets the preloaded state, its load response and the closed-contact vectors", NULL, o->staticShapes, &o->staticShapes, NULL));
   o->openingScale = 2; /* the strict law's; resolved by the law when the ROM is built unless given */
-  PetscCall(PetscOptionsReal("-rom_opening_shapes", "With -rom_preload_state or -rom_static_shapes: the node pairs whose contact state this multiple of the scene's load changes statically (or, under friction, makes slip) get opening shapes (the preloaded joint's static response to a unit force pair on each, 3 per pair); 0: none (default 2 under the strict law, 0 under the stick law or with -rom_snapshot_modes)", NULL, o->openingScale, &o->openingScale, &o->openingScaleSet));
+  PetscCall(PetscOptionsReal("-rom_opening_shapes", "Node pairs whose state this multiple of the load changes statically get 3 opening shapes each; 0: none (resolved by the law if not given)", NULL, o->openingScale, &o->openingScale, &o->openingScaleSet));
   o->slipScale = 4;
-  PetscCall(PetscOptionsReal("-rom_slip_shapes", "Under friction, with opening shapes: the node pairs whose traction, sticking, is beyond the cone under -/+ this multiple of the scene's load get shapes too (the sticking solve's zone beyond the cone is narrower than the slip zone: slip sheds load onto the neighbours); 0: only those beyond it at -rom_opening_shapes", NULL, o->slipScale, &o->slipScale, NULL));
+  PetscCall(PetscOptionsReal("-rom_slip_shapes", "Friction: node pairs beyond the cone, sticking, under -/+ this multiple of the load get shapes too; 0: only those at -rom_opening_shapes", NULL, o->slipScale, &o->slipScale, NULL));
   o->coneShapes = 0;
-  PetscCall(PetscOptionsReal("-rom_cone_shapes", "Under friction, interface-reduced ROM with -rom_preload_state: the node pairs whose preloaded tangential traction is at least this fraction of the cone mu |t_N| get shapes of their own (the static response to a unit force pair along the normal and along the traction), with or without snapshot modes; they follow the creep of those pairs under small loads; 0: none", NULL, o->coneShapes, &o->coneShapes, NULL));
+  PetscCall(PetscOptionsReal("-rom_cone_shapes", "Friction: node pairs at this fraction of the cone in the preloaded state get shapes (normal and traction); 0: none", NULL, o->coneShapes, &o->coneShapes, NULL));
   o->coneTraction = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-rom_cone_traction", "With -rom_cone_shapes: a shape along each pair's tangential traction as well as along its normal (false: the normal only, one shape per pair)", NULL, o->coneTraction, &o->coneTraction, NULL));
   o->coneModes = 0;
-  PetscCall(PetscOptionsInt("-rom_cone_modes", "With -rom_cone_shapes and -rom_snapshot_modes: instead of shapes per pair, this many per direction (normal, traction), the static responses to the leading patterns (POD) of the training run's relative displacements at those pairs; a basis that grows with the modes, not with the pairs on the cone; 0: a shape per pair and direction", NULL, o->coneModes, &o->coneModes, NULL));
+  PetscCall(PetscOptionsInt("-rom_cone_modes", "With -rom_cone_shapes and -rom_snapshot_modes: this many shapes per direction from the training run's patterns; 0: one per pair", NULL, o->coneModes, &o->coneModes, NULL));
   o->nOpenKrylov = 3;
   PetscCall(PetscOptionsInt("-rom_opening_krylov", "With opening shapes: Krylov vectors of the joint as that load opens it (its active set kept), like -rom_closed_krylov for the preloaded joint", NULL, o->nOpenKrylov, &o->nOpenKrylov, NULL));
   o->holdUnmarked = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-rom_hold_unmarked", "With opening shapes in the interface-reduced ROM: online, the contact points whose state the opening shapes' static solves did not change keep their preloaded state (the basis cannot open them); false: every point is free (the default under friction, where unmarked points slip too)", NULL, o->holdUnmarked, &o->holdUnmarked, &o->holdUnmarkedSet));
+  PetscCall(PetscOptionsBool("-rom_hold_unmarked", "Online, points the opening shapes' solves did not change keep their preloaded state (resolved: true, false under friction)", NULL, o->holdUnmarked, &o->holdUnmarked, &o->holdUnmarkedSet));
   o->gapsEverywhere = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-rom_gaps_everywhere", "Online, interface-reduced ROM under the strict law: take at every solve the gaps of every point (held ones included) and the whole gap of every open point, not only those a decision reads; the same history, slower (a check of the evaluation that skips them)", NULL, o->gapsEverywhere, &o->gapsEverywhere, NULL));
+  PetscCall(PetscOptionsBool("-rom_gaps_everywhere", "Online check: every point's gaps at every solve, not only those a decision reads (the same history, slower)", NULL, o->gapsEverywhere, &o->gapsEverywhere, NULL));
   o->updateRank = -1;
-  PetscCall(PetscOptionsInt("-rom_update_rank", "Online: the largest rank of a low-rank (Woodbury) update of the ROM's factorisation after a change of its active set, beyond which it refactorises; 0: refactorise at every change (default: 3/5 of the ROM's dimension under the strict law, 0 under the stick law)", NULL, o->updateRank, &o->updateRank, NULL));
+  PetscCall(PetscOptionsInt("-rom_update_rank", "Largest rank of a low-rank update of the online factorisation before it refactorises (-1: resolved by SetUp; 0: always refactorise)", NULL, o->updateRank, &o->updateRank, NULL));
   o->nSnapshotModes = 0;
-  PetscCall(PetscOptionsInt("-rom_snapshot_modes", "Append at most this many POD modes of the FOM's displacement snapshots of the same run (-fom true -snapshot_every k) to the basis: the leading singular vectors of what the basis misses of them (they replace the opening and slip shapes by default; a ROM file keeps them for runs at other loads); 0: none", NULL, o->nSnapshotModes, &o->nSnapshotModes, NULL));
+  PetscCall(PetscOptionsInt("-rom_snapshot_modes", "Append at most this many POD modes of the FOM's snapshots of the same run (-fom true -snapshot_every k) to the basis; 0: none", NULL, o->nSnapshotModes, &o->nSnapshotModes, NULL));
   o->snapshotTol = 1e-6;
   PetscCall(PetscOptionsReal("-rom_snapshot_tol", "With -rom_snapshot_modes: keep a mode only if its singular value is above this fraction of the snapshots' largest (their remainders' against the basis)", NULL, o->snapshotTol, &o->snapshotTol, NULL));
   o->bandScale = 0;
-  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (the tension at which a closed point opens) as a multiple of the FOM's (a wider band helps on fine meshes and where the load opens the joint, and costs accuracy in paper-step: docs/results.md; default 1, or 2e5 for an interface-reduced ROM under the strict law without opening shapes or snapshot modes: its own band is its solver tolerance)", NULL, o->bandScale, &o->bandScale, NULL));
+  PetscCall(PetscOptionsReal("-rom_contact_band_scale", "The ROM's activation band (tension at which a closed point opens), x the FOM's (0: resolved by SetUp; docs/decisions.md)", NULL, o->bandScale, &o->bandScale, NULL));
   PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, rom->view, &rom->view, NULL));
   PetscOptionsEnd();
   PetscCheck(o->penaltyScale >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_contact_penalty_scale must be > 0 (got %g)", (double)o->penaltyScale);
@@ -95,8 +95,17 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
   PetscCheck(o->nClosed >= 0 && o->nClosed <= 16, comm, PETSC_ERR_USER_INPUT, "-rom_closed_krylov must be between 0 and 16 (got %" PetscInt_FMT ")", o->nClosed);
   PetscCheck(o->nCCM >= 0 && o->nJIM >= 0, comm, PETSC_ERR_USER_INPUT, "-rom_n_ccm and -rom_n_jim must be >= 0");
   PetscCall(BoltKrylovSetFromOptions(o->krylov));
-  /* the offline phase's solvers and basis vectors, made later from the model: Kt's factorisation
-     (krylov_), the interface reduction's two (ir_, ir_interior_), the input block (BV, no prefix) */
+  PetscFunctionReturn(0);
+}
+
+/* The offline phase's solvers and basis vectors read their options (PETSc's and SLEPc's), made
+   later from the model: Kt's factorisation (krylov_), the interface reduction's two (ir_,
+   ir_interior_), the input block (BV, no prefix). */
+PetscErrorCode BoltROMSolversSetFromOptions(BoltROM *rom)
+{
+  MPI_Comm comm = rom->comm;
+
+  PetscFunctionBeginUser;
   PetscCall(BoltDirectSolverSetFromOptions(comm, "krylov_", PETSC_TRUE, MATSOLVERMUMPS));
   PetscCall(BoltDirectSolverSetFromOptions(comm, "ir_", PETSC_TRUE, MATSOLVERMUMPS));
   PetscCall(BoltDirectSolverSetFromOptions(comm, "ir_interior_", PETSC_TRUE, MATSOLVERMUMPS));
