@@ -39,10 +39,11 @@ def provenance(command, seconds=None):
     return f"Measured by `{command}` on commit {commit()}, {datetime.date.today().isoformat()}{took}."
 
 
-def replace_section(text, name, body, title=None, after=None):
+def replace_section(text, name, body, title=None, after=None, level=2):
     """text with the section NAME's content replaced by body. If absent, it is appended at the end,
     or, with after (the text of a level-2 heading, or its start), put before the level-2 heading
-    that follows that section (at the end if none follows, or if that heading is not found)."""
+    that follows that section (at the end if none follows, or if that heading is not found), under
+    a heading of the given level (3: a subsection of the section headed after)."""
     begin, end = f"<!-- {name} begin -->", f"<!-- {name} end -->"
     block = f"{begin}\n{body.strip()}\n{end}"
     i, j = text.find(begin), text.find(end)
@@ -50,7 +51,7 @@ def replace_section(text, name, body, title=None, after=None):
         return text[:i] + block + text[j + len(end):]
     if i >= 0 or j >= 0:
         raise ValueError(f"section {name}: its begin and end markers are not a pair")
-    head = f"## {title or name}\n\n" if title is not False else ""
+    head = f"{'#' * level} {title or name}\n\n" if title is not False else ""
     if after is not None:
         lines = text.splitlines(keepends=True)
         at = next((k for k, line in enumerate(lines) if line.startswith("## " + after)), None)
@@ -61,12 +62,12 @@ def replace_section(text, name, body, title=None, after=None):
     return text.rstrip("\n") + "\n\n" + head + block + "\n"
 
 
-def write_section(name, body, title=None, path=RESULTS, after=None):
+def write_section(name, body, title=None, path=RESULTS, after=None, level=2):
     """Replaces the section NAME of docs/results.md (or path) with body, atomically (a new section
     goes after the section headed after, see replace_section, or at the end)."""
     path = Path(path)
     text = path.read_text() if path.exists() else "# Measured results\n"
-    new = replace_section(text, name, body, title, after)
+    new = replace_section(text, name, body, title, after, level)
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(new)
     tmp.replace(path)
