@@ -51,3 +51,49 @@ def test_vector_option_refused_with_a_real_mesh_writes_nothing(beam, tmp_path):
 def test_vector_option_help_shows_the_whole_default():
     proc = run_boltrom(["-help"], check=False)
     assert "-load_direction <0.,0.,-1.>" in proc.stdout and "-preload_axis <0.,0.,1.>" in proc.stdout
+
+
+def attrs(path):
+    with h5py.File(path) as f:
+        return dict(f.attrs)
+
+
+def test_result_attributes_of_a_frictional_transient(joint_small, tmp_path):
+    """A short FOM run under a sine load along (1, 0, 1) with friction 0.2 and 0.15 at one pair, on
+    2 ranks: the root attributes of the result file, and the same fields in the JSON summary."""
+    mesh, _ = joint_small
+    out = tmp_path / "out"
+    run_boltrom(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-fom", "-ts_dt", "1e-4",
+                 "-ts_end", "5e-4", "-preload_force", "5000", "-load_force", "30",
+                 "-load_direction", "1,0,1", "-load_history", "sine", "-load_frequency", "80",
+                 "-probe_component", "0", "-contact_law", "coulomb", "-contact_friction", "0.2",
+                 "-contact_plate2_plate1_friction", "0.15", "-output_dir", out,
+                 "-summary", out / "s.json"], ranks=2)
+    a, s = attrs(out / "joint.h5"), json.loads((out / "s.json").read_text())
+    assert a["units"] == "SI: m, kg, s, N, Pa"
+    assert a["probe_group"] == "load_point" and int(a["probe_component"]) == 0
+    assert isinstance(a["probe_component"], np.integer)
+    assert float(a["load_force"]) == 30.0
+    assert np.allclose(a["load_direction"], [2 ** -0.5, 0, 2 ** -0.5], rtol=0, atol=1e-15)
+    assert a["load_history"] == "sine" and float(a["load_frequency"]) == 80.0
+    assert a["contact_law"] == "coulomb"
+    names = list(a["pair_names"])
+    assert names == ["head_washer", "washer_plate2", "plate2_plate1", "plate1_washer", "washer_nut"]
+    mu = dict(zip(names, a["friction"]))
+    assert mu == {"head_washer": 0.2, "washer_plate2": 0.2, "plate2_plate1": 0.15, "plate1_washer": 0.2, "washer_nut": 0.2}
+    assert "-contact_plate2_plate1_friction 0.15" in a["options"] and "-load_history sine" in a["options"]
+    assert s["probe_group"] == "load_point" and s["probe_component"] == 0
+    assert s["load_force"] == 30 and s["load_history"] == "sine" and s["load_frequency"] == 80
+    assert np.allclose(s["load_direction"], a["load_direction"], rtol=0, atol=1e-15)
+    assert s["friction_per_pair"] == mu and s["contact_law"] == "coulomb"
+
+
+def test_result_attributes_of_a_static_run(beam, tmp_path):
+    """No transient: no load history ("none", frequency 0); a frictionless law: friction 0 per pair."""
+    out = tmp_path / "out"
+    run_boltrom(["-mesh", beam, "-load_group", "tip", "-modal_nev", "0", "-output_dir", out, "-summary", out / "s.json"])
+    a, s = attrs(out / "joint.h5"), json.loads((out / "s.json").read_text())
+    assert a["load_history"] == "none" and float(a["load_frequency"]) == 0 and s["load_history"] == "none"
+    assert np.allclose(a["load_direction"], [0, 0, -1]) and float(a["load_force"]) == 10
+    assert len(a["friction"]) == len(a["pair_names"]) and not np.any(a["friction"])
+    assert a["probe_group"] == s["probe_group"] and int(a["probe_component"]) == 2

@@ -259,38 +259,49 @@ PetscErrorCode BoltOutputPairForces(BoltOutput *out, const char group[], BoltCon
 }
 
 /* The contact state at each snapshot (codes: per snapshot, each local point's), as vertex fields
-   contact_state_<i> that the temporal series shows beside the displacement. */
-PetscErrorCode BoltOutputSnapshotStates(BoltOutput *out, BoltMesh *m, BoltContactSet *c, PetscInt n, const unsigned char codes[])
+   <prefix>contact_state_<i> that the model's temporal series shows beside the displacement. */
+PetscErrorCode BoltOutputSnapshotStates(BoltOutput *out, BoltMesh *m, const char prefix[], BoltContactSet *c, PetscInt n, const unsigned char codes[])
 {
   PetscInt nf = out->nfields;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < n; i++) {
-    char name[32];
-    PetscCall(PetscSNPrintf(name, sizeof(name), "contact_state_%06" PetscInt_FMT, i));
+    char name[BOLTROM_NAME_LEN];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "%scontact_state_%06" PetscInt_FMT, prefix, i));
     PetscCall(BoltOutputContactState(out, m, c, &codes[4 * c->nelem * i], name));
     out->nfields = nf;
   }
-  out->snapStates = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
-/* Displacement snapshots: vertex fields snapshot_<i>, and a temporal XDMF series at close. */
-PetscErrorCode BoltOutputSnapshots(BoltOutput *out, BoltMesh *m, PetscInt n, Vec snap[], const PetscReal time[])
+/* Displacement snapshot i of a model as the vertex field <prefix>snapshot_<i> (its temporal
+   series, not the main grid, shows it: BoltOutputSnapshotSeries). */
+PetscErrorCode BoltOutputSnapshot(BoltOutput *out, BoltMesh *m, const char prefix[], PetscInt i, Vec u)
 {
   PetscInt nf = out->nfields;
+  char     name[BOLTROM_NAME_LEN];
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < n; i++) {
-    char name[32];
-    PetscCall(PetscSNPrintf(name, sizeof(name), "snapshot_%06" PetscInt_FMT, i));
-    PetscCall(PetscObjectSetName((PetscObject)snap[i], name));
-    PetscCall(BoltOutputVertexField(out, m, snap[i], name));
-    out->nfields = nf; /* snapshots go to the series file, not to the main grid */
-  }
-  PetscCall(PetscMalloc1(n + 1, &out->snapTime));
-  PetscCall(PetscArraycpy(out->snapTime, time, n));
-  out->nsnap = n;
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%ssnapshot_%06" PetscInt_FMT, prefix, i));
+  PetscCall(BoltOutputVertexField(out, m, u, name));
+  out->nfields = nf;
+  PetscFunctionReturn(0);
+}
+
+/* A model's n snapshots at times time[] (and its contact states, if written) become a temporal
+   XDMF series at close: <name>-series.xmf for prefix "", else <name>-<prefix without _>-series.xmf. */
+PetscErrorCode BoltOutputSnapshotSeries(BoltOutput *out, const char prefix[], PetscInt n, const PetscReal time[], PetscBool states)
+{
+  PetscInt k = out->nseries;
+
+  PetscFunctionBeginUser;
+  PetscCheck(k < 2, out->comm, PETSC_ERR_SUP, "At most two snapshot series (the FOM's and the ROM's)");
+  PetscCall(PetscStrncpy(out->series[k].prefix, prefix, sizeof(out->series[k].prefix)));
+  PetscCall(PetscMalloc1(n + 1, &out->series[k].time));
+  PetscCall(PetscArraycpy(out->series[k].time, time, n));
+  out->series[k].n      = n;
+  out->series[k].states = states;
+  out->nseries++;
   PetscFunctionReturn(0);
 }
 
@@ -302,6 +313,62 @@ static void BoltWriteXdmfMesh(FILE *fp, BoltOutput *out, BoltMesh *m)
   fprintf(fp, "   <Attribute Name=\"part\" AttributeType=\"Scalar\" Center=\"Cell\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/cell_fields/part</DataItem>\n   </Attribute>\n", m->ncellsGlobal, out->name);
 }
 
+static const char boltXdmfHead[] = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n";
+
+/* The main grid: the mesh and the fields written on it. */
+static void BoltWriteXdmfGrid(FILE *fp, BoltOutput *out, BoltMesh *m)
+{
+  fprintf(fp, "%s", boltXdmfHead);
+  fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Uniform\">\n", out->name);
+  fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n", m->ncellsGlobal);
+  fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s.h5:/topology/cells</DataItem>\n   </Topology>\n", m->ncellsGlobal, (int)sizeof(PetscInt), out->name);
+  fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/geometry/vertices</DataItem>\n   </Geometry>\n", m->nverticesGlobal, out->name);
+  for (PetscInt f = 0; f < out->nfields; f++) {
+    PetscInt n = out->fieldOnCells[f] ? m->ncellsGlobal : m->nverticesGlobal;
+    fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", out->field[f], out->fieldComponents[f] == 3 ? "Vector" : "Scalar", out->fieldOnCells[f] ? "Cell" : "Node");
+    if (out->fieldComponents[f] == 3) fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/%s/%s</DataItem>\n", n, out->name, "vertex_fields", out->field[f]);
+    else fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/%s/%s</DataItem>\n", n, out->name, out->fieldOnCells[f] ? "cell_fields" : "vertex_fields", out->field[f]);
+    fprintf(fp, "   </Attribute>\n");
+  }
+  fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+}
+
+/* Series k: a grid per snapshot with its displacement (and contact state). */
+static void BoltWriteXdmfSeries(FILE *fp, BoltOutput *out, BoltMesh *m, PetscInt k)
+{
+  const char *pre = out->series[k].prefix;
+
+  fprintf(fp, "%s", boltXdmfHead);
+  fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", out->name);
+  for (PetscInt i = 0; i < out->series[k].n; i++) {
+    fprintf(fp, "  <Grid Name=\"step\" GridType=\"Uniform\">\n   <Time Value=\"%.10g\"/>\n", (double)out->series[k].time[i]);
+    BoltWriteXdmfMesh(fp, out, m);
+    fprintf(fp, "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/%ssnapshot_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", m->nverticesGlobal, out->name, pre, i);
+    if (out->series[k].states) fprintf(fp, "   <Attribute Name=\"contact_state\" AttributeType=\"Scalar\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/%scontact_state_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", m->nverticesGlobal, out->name, pre, i);
+    fprintf(fp, "  </Grid>\n");
+  }
+  fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+}
+
+/* An XDMF file <dir>/<name><suffix>.xmf (rank 0), written under a temporary name: the main grid
+   (k < 0) or series k. */
+static PetscErrorCode BoltWriteXdmf(BoltOutput *out, BoltMesh *m, const char suffix[], PetscInt k)
+{
+  char  xtmp[PETSC_MAX_PATH_LEN], xfinal[PETSC_MAX_PATH_LEN];
+  FILE *fp;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(xfinal, sizeof(xfinal), "%s/%s%s.xmf", out->dir, out->name, suffix));
+  PetscCall(PetscSNPrintf(xtmp, sizeof(xtmp), "%s/.%s%s.xmf.tmp", out->dir, out->name, suffix));
+  fp = fopen(xtmp, "w");
+  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: check -output_dir", xtmp);
+  if (k < 0) BoltWriteXdmfGrid(fp, out, m);
+  else BoltWriteXdmfSeries(fp, out, m, k);
+  PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", xtmp);
+  PetscCheck(rename(xtmp, xfinal) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", xtmp, xfinal);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
 {
   PetscMPIInt rank;
@@ -311,49 +378,20 @@ PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
   PetscCall(PetscViewerDestroy(&out->viewer));
   PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
   if (rank == 0) {
-    char  xtmp[PETSC_MAX_PATH_LEN], xfinal[PETSC_MAX_PATH_LEN];
-    FILE *fp;
-
     PetscCheck(rename(out->h5tmp, out->h5final) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", out->h5tmp, out->h5final);
-    PetscCall(PetscSNPrintf(xfinal, sizeof(xfinal), "%s/%s.xmf", out->dir, out->name));
-    PetscCall(PetscSNPrintf(xtmp, sizeof(xtmp), "%s/.%s.xmf.tmp", out->dir, out->name));
-    fp = fopen(xtmp, "w");
-    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: check -output_dir", xtmp);
-    fprintf(fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
-    fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Uniform\">\n", out->name);
-    fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n", m->ncellsGlobal);
-    fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s.h5:/topology/cells</DataItem>\n   </Topology>\n", m->ncellsGlobal, (int)sizeof(PetscInt), out->name);
-    fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/geometry/vertices</DataItem>\n   </Geometry>\n", m->nverticesGlobal, out->name);
-    for (PetscInt f = 0; f < out->nfields; f++) {
-      PetscInt n = out->fieldOnCells[f] ? m->ncellsGlobal : m->nverticesGlobal;
-      fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", out->field[f], out->fieldComponents[f] == 3 ? "Vector" : "Scalar", out->fieldOnCells[f] ? "Cell" : "Node");
-      if (out->fieldComponents[f] == 3) fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/%s/%s</DataItem>\n", n, out->name, "vertex_fields", out->field[f]);
-      else fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/%s/%s</DataItem>\n", n, out->name, out->fieldOnCells[f] ? "cell_fields" : "vertex_fields", out->field[f]);
-      fprintf(fp, "   </Attribute>\n");
-    }
-    fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
-    PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", xtmp);
-    PetscCheck(rename(xtmp, xfinal) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", xtmp, xfinal);
-    if (out->nsnap) {
-      PetscCall(PetscSNPrintf(xfinal, sizeof(xfinal), "%s/%s-series.xmf", out->dir, out->name));
-      PetscCall(PetscSNPrintf(xtmp, sizeof(xtmp), "%s/.%s-series.xmf.tmp", out->dir, out->name));
-      fp = fopen(xtmp, "w");
-      PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: check -output_dir", xtmp);
-      fprintf(fp, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
-      fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", out->name);
-      for (PetscInt i = 0; i < out->nsnap; i++) {
-        fprintf(fp, "  <Grid Name=\"step\" GridType=\"Uniform\">\n   <Time Value=\"%.10g\"/>\n", (double)out->snapTime[i]);
-        BoltWriteXdmfMesh(fp, out, m);
-        fprintf(fp, "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/snapshot_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", m->nverticesGlobal, out->name, i);
-        if (out->snapStates) fprintf(fp, "   <Attribute Name=\"contact_state\" AttributeType=\"Scalar\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/contact_state_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", m->nverticesGlobal, out->name, i);
-        fprintf(fp, "  </Grid>\n");
-      }
-      fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
-      PetscCheck(fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", xtmp);
-      PetscCheck(rename(xtmp, xfinal) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", xtmp, xfinal);
+    PetscCall(BoltWriteXdmf(out, m, "", -1));
+    for (PetscInt k = 0; k < out->nseries; k++) {
+      char   suffix[BOLTROM_NAME_LEN];
+      size_t len;
+      PetscCall(PetscStrncpy(suffix, "-", sizeof(suffix)));
+      PetscCall(PetscStrlcat(suffix, out->series[k].prefix, sizeof(suffix)));
+      PetscCall(PetscStrlen(suffix, &len));
+      if (suffix[len - 1] == '_') suffix[len - 1] = '-';
+      PetscCall(PetscStrlcat(suffix, "series", sizeof(suffix)));
+      PetscCall(BoltWriteXdmf(out, m, suffix, k));
     }
   }
-  PetscCall(PetscFree(out->snapTime));
+  for (PetscInt k = 0; k < out->nseries; k++) PetscCall(PetscFree(out->series[k].time));
   PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

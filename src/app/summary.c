@@ -1,6 +1,6 @@
-/* A run's results: the JSON summary (-summary: the model, the tied analyses, and the FOM's and the
-   ROM's runs with their counters and phase times; the keys are listed in the README) and the
-   HDF5/XDMF file of its fields and histories. */
+/* A run's JSON summary (-summary): the model, the load, the tied analyses, and the FOM's and the
+   ROM's runs with their counters and phase times; the keys are listed in the README. The HDF5/XDMF
+   file of its fields and histories is fields.c's. */
 #include "boltrom.h"
 
 /* The figures of a Newmark run that the FOM and the ROM share; full (the FOM's) adds the time
@@ -247,88 +247,11 @@ PetscErrorCode BoltSummaryWrite(MPI_Comm comm, const char path[], const BoltSumm
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(BoltJSONOpen(comm, path, &j));
   PetscCall(SummaryModel(&j, s, size));
+  PetscCall(BoltSummaryWriteLoad(&j, s));
   PetscCall(SummaryTied(&j, s));
   if (s->fomRun) PetscCall(SummaryFOM(&j, s));
   if (s->rom) PetscCall(SummaryROM(&j, s));
   PetscCall(BoltJSONReal(&j, "setup_s", s->tSetUp));
   PetscCall(BoltJSONClose(&j));
-  PetscFunctionReturn(0);
-}
-
-/* A model's contact state at the end of its run, at the nodes (BoltOutputContactState). */
-static PetscErrorCode BoltWriteFinalContactState(BoltOutput *h5, BoltMesh *mesh, BoltContactState *state, const char name[])
-{
-  BoltContactSet *c = state->set;
-  unsigned char  *codes;
-
-  PetscFunctionBeginUser;
-  if (!c->ngpGlobal) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc1(4 * c->nelem + 1, &codes));
-  BoltContactStatePointCodes(state, codes);
-  PetscCall(BoltOutputContactState(h5, mesh, c, codes, name));
-  PetscCall(PetscFree(codes));
-  PetscFunctionReturn(0);
-}
-
-/* The fields and histories of the run: <dir>/<name>.h5 and .xmf (ParaView). */
-PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], const char name[])
-{
-  BoltMesh    *mesh  = s->mesh;
-  BoltLoadSet *loads = s->loads;
-  BoltNewmark *fom = s->fomRun, *rom = s->romRun;
-  BoltOutput   h5;
-
-  PetscFunctionBeginUser;
-  PetscCall(BoltOutputOpen(mesh, dir, name, &h5));
-  if (s->staticSolve) PetscCall(BoltOutputVertexField(&h5, mesh, s->u, "displacement"));
-  PetscCall(BoltOutputVertexField(&h5, mesh, loads->load, "load"));
-  if (loads->hasPreload) PetscCall(BoltOutputVertexField(&h5, mesh, loads->preload, "preload"));
-  if (fom) {
-    Vec fc;
-    PetscCall(BoltOutputVertexField(&h5, mesh, fom->q, "fom_final_displacement"));
-    PetscCall(VecDuplicate(fom->q, &fc));
-    PetscCall(BoltContactStateNodalForces(fom->op->state, fc));
-    PetscCall(BoltOutputVertexField(&h5, mesh, fc, "fom_final_contact_force"));
-    PetscCall(BoltWriteFinalContactState(&h5, mesh, fom->op->state, "fom_final_contact_state"));
-    PetscCall(VecDestroy(&fc));
-    PetscCall(BoltOutputSeries(&h5, "/fom", "time", fom->nsteps + 1, fom->probeTime));
-    PetscCall(BoltOutputSeries(&h5, "/fom", "probe", fom->nsteps + 1, fom->probeValue));
-    PetscCall(BoltOutputSeries(&h5, "/fom", "energy", fom->nsteps + 1, fom->energy));
-    {
-      const char *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
-      for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(&h5, "/fom/energy_accounting", rows[r], fom->nsteps + 1, &fom->ledger[r * (fom->nsteps + 1)]));
-    }
-    PetscCall(BoltOutputPairForces(&h5, "/fom", fom->op->contact, fom->nsteps + 1, fom->pairForce));
-    if (BoltContactStateHasFriction(fom->op->state)) {
-      PetscCall(BoltOutputSeries(&h5, "/fom", "slipping", fom->nsteps + 1, fom->slipping));
-      PetscCall(BoltOutputSeries(&h5, "/fom", "dissipated", fom->nsteps + 1, fom->dissipated));
-    }
-    if (fom->nsnap) {
-      PetscCall(BoltOutputSnapshots(&h5, mesh, fom->nsnap, fom->snap, fom->snapTime));
-      if (fom->op->contact->ngpGlobal) PetscCall(BoltOutputSnapshotStates(&h5, mesh, fom->op->contact, fom->nsnap, fom->snapCodes));
-    }
-  }
-  if (rom) {
-    PetscCall(BoltWriteFinalContactState(&h5, mesh, rom->op->state, "rom_final_contact_state"));
-    PetscCall(BoltOutputSeries(&h5, "/rom", "time", rom->nsteps + 1, rom->probeTime));
-    PetscCall(BoltOutputSeries(&h5, "/rom", "probe", rom->nsteps + 1, rom->probeValue));
-    PetscCall(BoltOutputSeries(&h5, "/rom", "energy", rom->nsteps + 1, rom->energy));
-    {
-      const char *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
-      for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(&h5, "/rom/energy_accounting", rows[r], rom->nsteps + 1, &rom->ledger[r * (rom->nsteps + 1)]));
-    }
-    PetscCall(BoltOutputPairForces(&h5, "/rom", rom->op->contact, rom->nsteps + 1, rom->pairForce));
-    if (BoltContactStateHasFriction(rom->op->state)) {
-      PetscCall(BoltOutputSeries(&h5, "/rom", "slipping", rom->nsteps + 1, rom->slipping));
-      PetscCall(BoltOutputSeries(&h5, "/rom", "dissipated", rom->nsteps + 1, rom->dissipated));
-    }
-  }
-  if (s->x) {
-    PetscCall(BoltOutputVertexField(&h5, mesh, s->x, "x"));
-    PetscCall(BoltOutputVertexField(&h5, mesh, s->Kx, "Kx"));
-    PetscCall(BoltOutputVertexField(&h5, mesh, s->Mx, "Mx"));
-  }
-  PetscCall(BoltOutputClose(&h5, mesh));
-  PetscCall(PetscPrintf(mesh->comm, "Wrote %s/%s.h5 and %s/%s.xmf (open the .xmf in ParaView)\n", dir, name, dir, name));
   PetscFunctionReturn(0);
 }

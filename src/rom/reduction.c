@@ -99,7 +99,8 @@ static PetscErrorCode BoltProjectVec(BV V, Vec f, Vec *fr)
    opening shapes' span). */
 static PetscErrorCode BoltBasisAppend(BV V, const char what[], PetscInt nv, Vec v[], PetscReal tol, PetscInt *added)
 {
-  PetscInt k, j = 0;
+  PetscInt  k, j = 0;
+  PetscReal rmin = PETSC_MAX_REAL, rmax = 0;
 
   PetscFunctionBeginUser;
   PetscCall(BVGetSizes(V, NULL, NULL, &k));
@@ -108,7 +109,6 @@ static PetscErrorCode BoltBasisAppend(BV V, const char what[], PetscInt nv, Vec 
     *added = 0;
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), "ROM: %s, remainder after orthogonalisation / norm:", what));
   for (PetscInt i = 0; i < nv; i++) {
     PetscReal nrm, n0;
     PetscBool dep;
@@ -117,10 +117,12 @@ static PetscErrorCode BoltBasisAppend(BV V, const char what[], PetscInt nv, Vec 
     PetscCall(BVInsertVec(V, k + j, v[i]));
     PetscCall(BVOrthonormalizeColumn(V, k + j, PETSC_TRUE, &nrm, &dep));
     if (nrm <= tol * n0) dep = PETSC_TRUE;
-    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), " %.2e%s", (double)(n0 > 0 ? nrm / n0 : 0), dep ? " (dropped)" : ""));
+    rmin = PetscMin(rmin, n0 > 0 ? nrm / n0 : 0);
+    rmax = PetscMax(rmax, n0 > 0 ? nrm / n0 : 0);
     if (!dep) j++;
   }
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), "\n"));
+  /* a summary: the remainders of hundreds of shapes would make a line of thousands of characters */
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), "ROM: %s: %" PetscInt_FMT " of %" PetscInt_FMT " kept, remainder after orthogonalisation / norm from %.2e to %.2e\n", what, j, nv, (double)rmin, (double)rmax));
   if (j < nv) PetscCall(BVResize(V, k + j, PETSC_TRUE));
   PetscCall(BVSetActiveColumns(V, 0, k + j));
   *added = j;
@@ -172,9 +174,7 @@ static PetscErrorCode BoltSnapshotModes(BV V, PetscInt nsnap, Vec snap[], PetscI
     PetscCall(BVMultVec(X, 1.0, 0.0, (*modes)[k], coef));
     k++;
   }
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), "ROM: %" PetscInt_FMT " snapshots, their remainders' singular values relative to the largest:", ns));
-  for (PetscInt i = ns - 1; i >= 0 && i >= ns - k - 1; i--) PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), " %.1e", (double)PetscSqrtReal(PetscMax(w[i], 0) / w[ns - 1])));
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), " (%" PetscInt_FMT " kept)\n", k));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)V), "ROM: %" PetscInt_FMT " snapshots: %" PetscInt_FMT " modes kept, the last at %.1e of the largest singular value, the next at %.1e\n", ns, k, k > 0 ? (double)PetscSqrtReal(PetscMax(w[ns - k], 0) / w[ns - 1]) : 0.0, ns - k - 1 >= 0 ? (double)PetscSqrtReal(PetscMax(w[ns - k - 1], 0) / w[ns - 1]) : 0.0));
   PetscCall(MatDenseRestoreArray(G, &g));
   PetscCall(PetscFree3(w, work, coef));
   PetscCall(MatDestroy(&G));
@@ -308,6 +308,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscCall(PetscPrintf(o->comm, "\n"));
   PetscCall(PetscPrintf(o->comm, "ROM: %" PetscInt_FMT " inputs, order %" PetscInt_FMT ", s0 %g rad/s: dimension %" PetscInt_FMT " (offline %.2f s: inputs %.2f, basis %.2f [factor %.2f, solves %.2f, orthogonalisation %.2f], projection %.2f)\n", rom->ninputs, rom->order, (double)rom->s0, rom->n, (double)rom->tOffline, (double)rom->tInputs, (double)rom->tBasis, (double)rom->tFactor, (double)rom->tSolve, (double)rom->tOrth, (double)rom->tProject));
   if (o->file[0]) PetscCall(BoltROMSave(rom, V, asmb, loads, o->file));
+  PetscCall(BoltROMKeepBasis(rom, V)); /* the output's u = V q (rom_field.c) */
   PetscCall(BVDestroy(&V));
   PetscCall(MatDestroy(&C));
   PetscFunctionReturn(0);

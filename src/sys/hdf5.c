@@ -1,6 +1,6 @@
 /* Files under src/sys: folders made before the files written into them, and the HDF5 datasets
    (PetscViewerHDF5) that the models, checkpoints and ROM files write and read back, with a
-   sorted index to find a row by its key. */
+   sorted index to find a row by its key, and attributes of a file's root group. */
 #include "boltrom.h"
 #include <petscviewerhdf5.h>
 #include <sys/stat.h>
@@ -144,5 +144,86 @@ PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *ix)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFree2(ix->key, ix->row));
+  PetscFunctionReturn(0);
+}
+
+/* ------------------------------------------------------------------ attributes of the root group */
+#define BoltCallH5(call) \
+  do { \
+    if ((call) < 0) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 error in %s", #call); \
+  } while (0)
+
+/* Attribute name of the root group "/" of the file that v has open: n values of type t (n < 0: a
+   scalar). Collective: every rank calls it with the same values, as parallel HDF5 asks. */
+static PetscErrorCode BoltHDF5RootAttribute(PetscViewer v, const char name[], hid_t t, PetscInt n, const void *values)
+{
+  hid_t   file, space, attr;
+  hsize_t dim = (hsize_t)PetscMax(n, 0);
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5GetFileId(v, &file));
+  space = n < 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &dim, NULL);
+  BoltCallH5(space);
+  attr = H5Acreate2(file, name, t, space, H5P_DEFAULT, H5P_DEFAULT);
+  BoltCallH5(attr);
+  BoltCallH5(H5Awrite(attr, t, values));
+  BoltCallH5(H5Aclose(attr));
+  BoltCallH5(H5Sclose(space));
+  PetscFunctionReturn(0);
+}
+
+/* n strings (n < 0: one), as variable-length UTF-8 strings (h5py reads them as str). */
+static PetscErrorCode BoltHDF5RootStrings(PetscViewer v, const char name[], PetscInt n, const char *const s[])
+{
+  hid_t t = H5Tcopy(H5T_C_S1);
+
+  PetscFunctionBeginUser;
+  BoltCallH5(t);
+  BoltCallH5(H5Tset_size(t, H5T_VARIABLE));
+  BoltCallH5(H5Tset_cset(t, H5T_CSET_UTF8));
+  PetscCall(BoltHDF5RootAttribute(v, name, t, n, s));
+  BoltCallH5(H5Tclose(t));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltHDF5AttributeString(PetscViewer v, const char name[], const char value[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltHDF5RootStrings(v, name, -1, &value));
+  PetscFunctionReturn(0);
+}
+
+/* An array of n strings (an empty array for n = 0). */
+PetscErrorCode BoltHDF5AttributeStrings(PetscViewer v, const char name[], PetscInt n, const char *const values[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltHDF5RootStrings(v, name, n, values));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltHDF5AttributeInt(PetscViewer v, const char name[], PetscInt value)
+{
+  long long i = value;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltHDF5RootAttribute(v, name, H5T_NATIVE_LLONG, -1, &i));
+  PetscFunctionReturn(0);
+}
+
+/* n reals (n < 0: a scalar). */
+PetscErrorCode BoltHDF5AttributeReals(PetscViewer v, const char name[], PetscInt n, const PetscReal values[])
+{
+  double one, *a;
+
+  PetscFunctionBeginUser;
+  if (n < 0) {
+    one = (double)values[0];
+    PetscCall(BoltHDF5RootAttribute(v, name, H5T_NATIVE_DOUBLE, -1, &one));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscMalloc1(n + 1, &a));
+  for (PetscInt i = 0; i < n; i++) a[i] = (double)values[i];
+  PetscCall(BoltHDF5RootAttribute(v, name, H5T_NATIVE_DOUBLE, n, a));
+  PetscCall(PetscFree(a));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,115 @@
+/* The fields and histories of a run in <dir>/<name>.h5, with the XDMF files beside it that
+   ParaView opens: the tied joint's fields, then the FOM's and the ROM's runs through one writer
+   (the ROM's displacement in full, V q, while it keeps its whole basis). */
+#include "boltrom.h"
+
+/* A model's contact state at the end of its run, at the nodes (BoltOutputContactState). */
+static PetscErrorCode FieldsFinalContactState(BoltOutput *h5, BoltMesh *mesh, BoltContactState *state, const char name[])
+{
+  BoltContactSet *c = state->set;
+  unsigned char  *codes;
+
+  PetscFunctionBeginUser;
+  if (!c->ngpGlobal) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(4 * c->nelem + 1, &codes));
+  BoltContactStatePointCodes(state, codes);
+  PetscCall(BoltOutputContactState(h5, mesh, c, codes, name));
+  PetscCall(PetscFree(codes));
+  PetscFunctionReturn(0);
+}
+
+/* A run's histories under group /<model>: time, probe, energy and its accounting, the pair
+   forces and, under friction, the slipping points and the dissipated energy. */
+static PetscErrorCode FieldsHistories(BoltOutput *h5, const char model[], BoltNewmark *nm)
+{
+  const char    *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
+  const PetscInt N                 = nm->nsteps + 1;
+  char           group[32], ledger[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(group, sizeof(group), "/%s", model));
+  PetscCall(PetscSNPrintf(ledger, sizeof(ledger), "/%s/energy_accounting", model));
+  PetscCall(BoltOutputSeries(h5, group, "time", N, nm->probeTime));
+  PetscCall(BoltOutputSeries(h5, group, "probe", N, nm->probeValue));
+  PetscCall(BoltOutputSeries(h5, group, "energy", N, nm->energy));
+  for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(h5, ledger, rows[r], N, &nm->ledger[r * N]));
+  PetscCall(BoltOutputPairForces(h5, group, nm->op->contact, N, nm->pairForce));
+  if (BoltContactStateHasFriction(nm->op->state)) {
+    PetscCall(BoltOutputSeries(h5, group, "slipping", N, nm->slipping));
+    PetscCall(BoltOutputSeries(h5, group, "dissipated", N, nm->dissipated));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The displacement snapshots of a run (u: a work vector of the full layout) as the fields
+   <prefix>snapshot_<i> and, with contact, <prefix>contact_state_<i>, and their temporal series. */
+static PetscErrorCode FieldsSnapshots(BoltOutput *h5, BoltMesh *mesh, const char prefix[], BoltNewmark *nm, BoltROM *rom, Vec u)
+{
+  BoltContactSet *c = nm->op->contact;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < nm->nsnap; i++) {
+    if (rom) PetscCall(BoltROMExpand(rom, nm->snap[i], u));
+    PetscCall(BoltOutputSnapshot(h5, mesh, prefix, i, rom ? u : nm->snap[i]));
+  }
+  if (c->ngpGlobal) PetscCall(BoltOutputSnapshotStates(h5, mesh, prefix, c, nm->nsnap, nm->snapCodes));
+  PetscCall(BoltOutputSnapshotSeries(h5, prefix, nm->nsnap, nm->snapTime, c->ngpGlobal ? PETSC_TRUE : PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* One model's run, the FOM's (rom NULL) or the ROM's: <model>_final_displacement, the FOM's
+   final contact forces, <model>_final_contact_state, the histories and the snapshots. The
+   FOM's snapshots keep their names (snapshot_<i>, <name>-series.xmf); the ROM's take rom_. */
+static PetscErrorCode FieldsRun(BoltOutput *h5, const BoltSummary *s, const char model[], BoltNewmark *nm, BoltROM *rom)
+{
+  BoltMesh *mesh = s->mesh;
+  PetscBool whole = PETSC_TRUE;
+  Vec       u;
+  char      name[BOLTROM_NAME_LEN];
+
+  PetscFunctionBeginUser;
+  if (rom) PetscCall(BoltROMHasBasis(rom, &whole));
+  if (!whole) PetscCall(PetscPrintf(mesh->comm, "The ROM was read from its file, which keeps no whole basis: no rom_ displacement fields (build the ROM in this run for them)\n"));
+  PetscCall(VecDuplicate(s->loads->load, &u));
+  if (whole) {
+    PetscCall(PetscSNPrintf(name, sizeof(name), "%s_final_displacement", model));
+    if (rom) PetscCall(BoltROMExpand(rom, nm->q, u));
+    PetscCall(BoltOutputVertexField(h5, mesh, rom ? u : nm->q, name));
+  }
+  if (!rom) { /* the FOM's nodal contact forces */
+    PetscCall(BoltContactStateNodalForces(nm->op->state, u));
+    PetscCall(BoltOutputVertexField(h5, mesh, u, "fom_final_contact_force"));
+  }
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%s_final_contact_state", model));
+  PetscCall(FieldsFinalContactState(h5, mesh, nm->op->state, name));
+  PetscCall(FieldsHistories(h5, model, nm));
+  if (nm->nsnap && whole) PetscCall(FieldsSnapshots(h5, mesh, rom ? "rom_" : "", nm, rom, u));
+  PetscCall(VecDestroy(&u));
+  PetscFunctionReturn(0);
+}
+
+/* The fields and histories of the run: <dir>/<name>.h5 and .xmf (ParaView), with the run's
+   description as attributes of the root group (metadata.c). */
+PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], const char name[])
+{
+  BoltMesh    *mesh  = s->mesh;
+  BoltLoadSet *loads = s->loads;
+  BoltOutput   h5;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltOutputOpen(mesh, dir, name, &h5));
+  PetscCall(BoltSummaryWriteAttributes(s, h5.viewer));
+  if (s->staticSolve) PetscCall(BoltOutputVertexField(&h5, mesh, s->u, "displacement"));
+  PetscCall(BoltOutputVertexField(&h5, mesh, loads->load, "load"));
+  if (loads->hasPreload) PetscCall(BoltOutputVertexField(&h5, mesh, loads->preload, "preload"));
+  if (s->fomRun) PetscCall(FieldsRun(&h5, s, "fom", s->fomRun, NULL));
+  if (s->romRun) PetscCall(FieldsRun(&h5, s, "rom", s->romRun, s->rom));
+  if (s->x) {
+    PetscCall(BoltOutputVertexField(&h5, mesh, s->x, "x"));
+    PetscCall(BoltOutputVertexField(&h5, mesh, s->Kx, "Kx"));
+    PetscCall(BoltOutputVertexField(&h5, mesh, s->Mx, "Mx"));
+  }
+  PetscCall(BoltOutputClose(&h5, mesh));
+  PetscCall(PetscPrintf(mesh->comm, "Wrote %s/%s.h5 and %s/%s.xmf (open the .xmf in ParaView)\n", dir, name, dir, name));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,87 @@
+/* What a result file says about its run, so that a reader needs no log: the root attributes of
+   the HDF5 file and the same load and friction fields in the JSON summary.
+
+   Root attributes of <output_name>.h5 (group "/"):
+     units            string   "SI: m, kg, s, N, Pa"
+     probe_group      string   the point group of the probe histories (-probe_group)
+     probe_component  integer  0, 1 or 2: x, y or z (-probe_component)
+     load_force       real     the external load [N] (-load_force)
+     load_direction   3 reals  its unit direction (-load_direction, normalised)
+     load_history     string   step, sine, ramp, release or sweep (-load_history); "none" without
+                               a transient (a static run only)
+     load_frequency   real     [Hz] for sine and sweep, else 0 (-load_frequency)
+     contact_law      string   -contact_law
+     pair_names       strings  the contact pairs, in the order of friction
+     friction         reals    the Coulomb coefficient per pair, 0 for a frictionless law
+     options          string   the run's options, as PetscOptionsGetAll gives them */
+#include "boltrom.h"
+
+/* In the order of BoltLoadHistory, as -load_history takes them. */
+static const char *const boltLoadHistoryNames[] = {"step", "sine", "ramp", "release", "sweep"};
+
+/* The load's time history and frequency (0 where it has none) of the run's transient. */
+static void BoltRunLoadHistory(const BoltSummary *s, const char **name, PetscReal *frequency)
+{
+  const BoltNewmark *nm = s->fomRun ? s->fomRun : s->romRun;
+
+  *name      = nm ? boltLoadHistoryNames[nm->history] : "none";
+  *frequency = nm && (nm->history == BOLT_LOAD_SINE || nm->history == BOLT_LOAD_SWEEP) ? nm->frequency : 0;
+}
+
+/* The Coulomb coefficient of each pair, 0 for a frictionless law. */
+static void BoltRunFriction(const BoltContactSet *c, PetscReal mu[])
+{
+  for (PetscInt p = 0; p < c->npairs; p++) mu[p] = BoltContactSetHasFriction(c) ? c->friction[p] : 0;
+}
+
+/* The root attributes above, on the file that v has open (every rank, same values). */
+PetscErrorCode BoltSummaryWriteAttributes(const BoltSummary *s, PetscViewer v)
+{
+  const BoltLoadSet    *l = s->loads;
+  const BoltContactSet *c = s->contact;
+  const char           *history, *names[BOLTROM_MAX_PAIRS];
+  char                 *options;
+  PetscReal             frequency, mu[BOLTROM_MAX_PAIRS];
+
+  PetscFunctionBeginUser;
+  BoltRunLoadHistory(s, &history, &frequency);
+  BoltRunFriction(c, mu);
+  for (PetscInt p = 0; p < c->npairs; p++) names[p] = c->pairName[p];
+  PetscCall(PetscOptionsGetAll(NULL, &options));
+  PetscCall(BoltHDF5AttributeString(v, "units", "SI: m, kg, s, N, Pa"));
+  PetscCall(BoltHDF5AttributeString(v, "probe_group", l->probeGroup));
+  PetscCall(BoltHDF5AttributeInt(v, "probe_component", l->probeComponent));
+  PetscCall(BoltHDF5AttributeReals(v, "load_force", -1, &l->loadForce));
+  PetscCall(BoltHDF5AttributeReals(v, "load_direction", 3, l->loadDirection));
+  PetscCall(BoltHDF5AttributeString(v, "load_history", history));
+  PetscCall(BoltHDF5AttributeReals(v, "load_frequency", -1, &frequency));
+  PetscCall(BoltHDF5AttributeString(v, "contact_law", c->lawType));
+  PetscCall(BoltHDF5AttributeStrings(v, "pair_names", c->npairs, names));
+  PetscCall(BoltHDF5AttributeReals(v, "friction", c->npairs, mu));
+  PetscCall(BoltHDF5AttributeString(v, "options", options));
+  PetscCall(PetscFree(options));
+  PetscFunctionReturn(0);
+}
+
+/* The same load and friction fields in the JSON summary ("friction_per_pair": pair: coefficient). */
+PetscErrorCode BoltSummaryWriteLoad(BoltJSON *j, const BoltSummary *s)
+{
+  const BoltLoadSet    *l = s->loads;
+  const BoltContactSet *c = s->contact;
+  const char           *history;
+  PetscReal             frequency, mu[BOLTROM_MAX_PAIRS];
+
+  PetscFunctionBeginUser;
+  BoltRunLoadHistory(s, &history, &frequency);
+  BoltRunFriction(c, mu);
+  PetscCall(BoltJSONString(j, "probe_group", l->probeGroup));
+  PetscCall(BoltJSONInt(j, "probe_component", l->probeComponent));
+  PetscCall(BoltJSONReal(j, "load_force", l->loadForce));
+  PetscCall(BoltJSONRealArray(j, "load_direction", 3, l->loadDirection));
+  PetscCall(BoltJSONString(j, "load_history", history));
+  PetscCall(BoltJSONReal(j, "load_frequency", frequency));
+  PetscCall(BoltJSONBeginObject(j, "friction_per_pair"));
+  for (PetscInt p = 0; p < c->npairs; p++) PetscCall(BoltJSONReal(j, c->pairName[p], mu[p]));
+  PetscCall(BoltJSONEndObject(j));
+  PetscFunctionReturn(0);
+}
