@@ -2,7 +2,7 @@
    found in parallel by node coordinates, with their penalties and element matrices. Each
    element is kept by the rank that owns its face a; the DOFs of side b are global indices,
    so the element's matrix is assembled straight into the distributed system. */
-#include "boltrom.h"
+#include "private/contact.h"
 
 PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
 {
@@ -26,17 +26,16 @@ PetscErrorCode BoltContactSetCreate(BoltMesh *mesh, BoltContactSet **cs)
 
 PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
 {
-  BoltContactLaw *law = &c->law;
-  const char     *quad[] = {"gauss", "nodal"};
-  PetscBool      set;
+  const char *quad[] = {"gauss", "nodal"};
+  PetscBool   set;
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactLawRegisterAll());
   PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
   PetscCall(PetscOptionsFList("-contact_law", "Contact law: strict (one-sided at every node pair, closed pairs stick), coulomb (strict with Coulomb friction) or stick (the paper's)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
-  PetscCall(BoltContactLawSetType(c->mesh->comm, c->lawType, law)); /* an unknown law fails here, before any solve */
-  c->penaltyFactor = law->penaltyFactor;
-  c->quadrature    = law->strict ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
+  PetscCall(BoltContactLawCreate(c->mesh->comm, c->lawType, &c->law)); /* an unknown law fails here, before any solve */
+  c->penaltyFactor = c->law->penaltyFactor;
+  c->quadrature    = BoltContactSetIsComplementarity(c) ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m] (default: the law's, strict 3e7, coulomb 1e6, stick 200)", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
   {
     const char *const reclose[] = {"slide", "stick"};
@@ -50,7 +49,7 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
     const char *open[] = {"nodal", "gauss"};
     PetscCall(PetscOptionsEList("-contact_open_test", "Stick law: a closed point opens when tensile beyond the band: nodal (traction smoothed through the nodes) or gauss (its own multiplier)", NULL, open, 2, open[c->openTest], &c->openTest, NULL));
   }
-  if (c->activationGap < 0 && !law->strict) c->activationGap = 1e-7; /* strict: -1 until SetUp knows the mesh */
+  if (c->activationGap < 0 && !BoltContactSetIsComplementarity(c)) c->activationGap = 1e-7; /* strict: -1 until SetUp knows the mesh */
   PetscCall(PetscOptionsReal("-contact_activation_gap", "An open point closes when it penetrates by more than this [m] (default: strict 1e-9 x the shortest contact-face edge, stick 1e-7)", NULL, c->activationGap, &c->activationGap, &set));
   PetscCall(PetscOptionsReal("-contact_match_tolerance", "Node matching tolerance, relative to the face's shortest edge", NULL, c->matchTolerance, &c->matchTolerance, NULL));
   PetscCall(PetscOptionsReal("-contact_friction", "Coulomb friction coefficient of every pair (-contact_law coulomb; -contact_<pair>_friction sets one pair)", NULL, c->frictionDefault, &c->frictionDefault, &c->frictionSet));
@@ -61,12 +60,12 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscCheck(c->stickFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_stick_stiffness_factor must be > 0 (got %g)", (double)c->stickFactor);
   PetscCheck(c->slipStiffnessRatio > 1, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_stiffness_ratio must be > 1 (got %g)", (double)c->slipStiffnessRatio);
   PetscCheck(c->slipAngleTolerance > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_angle_tolerance must be > 0 (got %g)", (double)c->slipAngleTolerance);
-  PetscCheck(!c->frictionSet || law->friction, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_friction needs a frictional law: add -contact_law coulomb (the %s law has no Coulomb limit)", c->lawType);
-  PetscCheck(!law->friction || c->reanchor, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_reclose slide is frictionless sliding: drop it with -contact_law coulomb (a pair that closes again sticks, then slips by friction)");
+  PetscCheck(!c->frictionSet || BoltContactSetHasFriction(c), c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_friction needs a frictional law: add -contact_law coulomb (the %s law has no Coulomb limit)", c->lawType);
+  PetscCheck(!BoltContactSetHasFriction(c) || c->reanchor, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_reclose slide is frictionless sliding: drop it with -contact_law coulomb (a pair that closes again sticks, then slips by friction)");
   PetscCheck(c->frictionDefault >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_friction must be >= 0 (got %g)", (double)c->frictionDefault);
   PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
   PetscCheck(!set || c->activationGap >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_activation_gap must be >= 0 (got %g)", (double)c->activationGap);
-  PetscCheck(!law->strict || c->augment, c->mesh->comm, PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
+  PetscCheck(!BoltContactSetIsComplementarity(c) || c->augment, c->mesh->comm, PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
   PetscFunctionReturn(0);
 }
 
@@ -247,12 +246,12 @@ static PetscErrorCode ContactPairParameters(BoltContactSet *c, PetscInt p, Petsc
   PetscOptionsBegin(m->comm, NULL, "Contact pair", "boltrom");
   PetscCall(PetscOptionsReal(opt, "Coulomb friction coefficient of this pair (-contact_law coulomb)", NULL, c->friction[p], &c->friction[p], &set));
   PetscOptionsEnd();
-  PetscCheck(!set || c->law.friction, m->comm, PETSC_ERR_USER_INPUT, "%s needs a frictional law: add -contact_law coulomb", opt);
+  PetscCheck(!set || BoltContactSetHasFriction(c), m->comm, PETSC_ERR_USER_INPUT, "%s needs a frictional law: add -contact_law coulomb", opt);
   PetscCheck(c->friction[p] >= 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be >= 0 (got %g)", opt, (double)c->friction[p]);
   /* stick law: the opening band in traction is that of the default penalty (200 E/m) at the
      activation gap, whatever the penalty: scaled with eps_N, a stiff penalty kept every point
      closed. The strict law has none. */
-  c->bandTraction[p] = c->law.strict ? 1e-10 * PetscMin(Ea, Eb) : 200.0 * PetscMin(Ea, Eb) * c->activationGap;
+  c->bandTraction[p] = BoltContactSetIsComplementarity(c) ? 1e-10 * PetscMin(Ea, Eb) : 200.0 * PetscMin(Ea, Eb) * c->activationGap;
   PetscFunctionReturn(0);
 }
 
@@ -410,6 +409,7 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
   PetscCall(VecDestroy(&(*cs)->fGlobal));
   PetscCall(PetscFree3((*cs)->nodalArea, (*cs)->nodalForce, (*cs)->tau));
   PetscCall(VecScatterDestroy(&(*cs)->scatter));
+  PetscCall(BoltContactLawDestroy(&(*cs)->law));
   PetscCall(PetscFree(*cs));
   PetscFunctionReturn(0);
 }

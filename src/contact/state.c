@@ -2,7 +2,7 @@
    sets at the Gauss points, with the element matrices and K_c of the active set. The full and
    the reduced model each own one over the shared geometry (BoltContactSet), so neither changes
    the other's penalties or multipliers. */
-#include "boltrom.h"
+#include "private/contact.h"
 #include <stdint.h>
 #include <string.h>
 
@@ -16,12 +16,12 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
   PetscCall(PetscNew(&s));
   s->set = c;
   PetscCall(PetscStrncpy(s->lawType, c->lawType, sizeof(s->lawType)));
-  s->law = c->law; /* looked up once, when the set read -contact_law */
+  s->law = c->law; /* the set's, looked up once when it read -contact_law */
   s->augment       = c->augment;
   s->activationGap = c->activationGap;
   /* the strict law judges a closed pair on its nodal traction (force over tributary area): with
      nodal quadrature that is the node pair's own multiplier, shared by its element corners */
-  s->openTest      = s->law.strict ? BOLT_OPEN_NODAL : c->openTest;
+  s->openTest      = s->law->complementarity ? BOLT_OPEN_NODAL : c->openTest;
   for (PetscInt p = 0; p < c->npairs; p++) {
     s->epsN[p]         = c->epsN[p];
     s->epsT[p]         = c->epsT[p];
@@ -211,9 +211,9 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool ac
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     s->active[gp] = s->activeOld[gp] = s->activeOlder[gp] = active[gp];
-    /* an open point will slide; under friction every closed pair starts sticking, and its trial
-       traction decides again whether it slips */
-    s->released[gp] = (PetscBool)(s->law.strict && !s->law.friction && (released ? released[gp] : !active[gp]));
+    /* the law says which points slide (the strict law: the open ones; under friction every
+       closed pair starts sticking, and its trial traction decides again whether it slips) */
+    s->released[gp] = s->law->ops.presetReleased ? s->law->ops.presetReleased(s, gp, active, released) : PETSC_FALSE;
     if (active[gp]) nact++;
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
@@ -237,7 +237,7 @@ PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
   }
   for (PetscInt e = 0; e < c->nelem; e++) {
     if (!s->dirty[e]) continue;
-    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], BoltContactStateStickStiffness(s, c->elem[e].pair), &s->active[4 * e], &s->released[4 * e], BoltContactStateSlipDirs(s, e), &s->Ke[576 * e]));
+    PetscCall(s->law->ops.elementStiffness(s, e, &s->Ke[576 * e]));
     s->dirty[e] = PETSC_FALSE;
     changed++;
   }
@@ -273,18 +273,18 @@ PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
   PetscFunctionReturn(0);
 }
 
+/* The law's penalty traction at point gp of a multiplier and a gap, under the point's penalties. */
 void BoltContactStateTrialOf(const BoltContactState *s, PetscInt gp, const PetscReal lambda[3], const PetscReal g[3], PetscReal t[3])
 {
   const PetscInt pair = s->set->elem[gp / 4].pair;
 
-  s->law.traction(lambda, g, &s->set->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
+  s->law->ops.traction(lambda, g, &s->set->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
 }
 
+/* Element e's stiffness block under the state's law (a model that assembles its own K_c). */
 PetscErrorCode BoltContactStateElementStiffness(BoltContactState *s, PetscInt e, PetscReal Ke[576])
 {
-  BoltContactSet *c = s->set;
-
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[c->elem[e].pair], BoltContactStateStickStiffness(s, c->elem[e].pair), &s->active[4 * e], &s->released[4 * e], BoltContactStateSlipDirs(s, e), Ke));
+  PetscCall(s->law->ops.elementStiffness(s, e, Ke));
   PetscFunctionReturn(0);
 }

@@ -1,25 +1,23 @@
 /* What the contact state measures for the history and the checks: contact work, stick energy
    and dissipation, tractions and resultants per pair, nodal forces and point codes for output,
    penetration and complementarity. */
-#include "boltrom.h"
+#include "private/contact.h"
 #include <stdint.h>
 #include <string.h>
 
-/* The elastic energy of the frictional sticks, sum over closed pairs of area |t_T|^2 / (2 k_t)
-   [J], over all ranks (zero without friction). With the friction's dissipation it accounts for
-   the contact tractions' work. */
+/* The elastic energy of the law's sticks over the closed pairs [J], over all ranks (friction:
+   area |t_T|^2 / (2 k_t) per pair; zero without). With the friction's dissipation it accounts
+   for the contact tractions' work. */
 PetscErrorCode BoltContactStateStickEnergy(BoltContactState *s, PetscReal *energy)
 {
   BoltContactSet *c   = s->set;
   PetscReal       loc = 0;
 
   PetscFunctionBeginUser;
-  if (s->law.friction)
+  if (s->law->ops.stickEnergy)
     for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-      const PetscReal *t = &s->lambda[3 * gp], *n = &c->gpNormal[3 * gp];
-      const PetscReal  tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
       if (!s->active[gp]) continue;
-      loc += c->gpW[gp] * (PetscSqr(t[0] - tn * n[0]) + PetscSqr(t[1] - tn * n[1]) + PetscSqr(t[2] - tn * n[2])) / (2 * s->stickStiffness[c->elem[gp / 4].pair]);
+      loc += s->law->ops.stickEnergy(s, gp);
     }
   PetscCall(MPIU_Allreduce(&loc, energy, 1, MPIU_REAL, MPI_SUM, c->mesh->comm));
   PetscFunctionReturn(0);
@@ -30,8 +28,7 @@ PetscErrorCode BoltContactStateStickEnergy(BoltContactState *s, PetscReal *energ
 void BoltContactStateStaticStart(BoltContactState *s)
 {
   for (PetscInt k = 0; k < 12 * s->set->nelem; k++) s->slipStart[k] = s->tractionStart[k] = 0;
-  if (s->law.friction)
-    for (PetscInt k = 0; k < 12 * s->set->nelem; k++) s->anchor[k] = 0;
+  if (s->law->ops.staticStart) s->law->ops.staticStart(s);
 }
 
 /* The work the contact tractions did so far [J], over all ranks. */
@@ -72,7 +69,7 @@ void BoltContactStateEndStep(BoltContactState *s)
 /* Gaps relative to the anchors (after the raw gaps u_b - u_a were computed into gap). */
 void BoltContactStateAnchorGaps(BoltContactState *s, PetscReal gap[])
 {
-  if (!s->anchored || s->law.friction) return; /* a frictional state's anchors are its sticks' rest positions */
+  if (!s->anchored || s->law->rawGaps) return; /* (raw gaps: the anchors are the sticks' rest positions) */
   for (PetscInt k = 0; k < 12 * s->set->nelem; k++) gap[k] -= s->anchor[k];
 }
 
@@ -92,7 +89,7 @@ static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt g
     for (PetscInt k = 0; k < 3; k++) t[k] = s->lambda[3 * gp + k];
     return;
   }
-  s->law.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[c->elem[e].pair], BoltContactStateEpsT(s, gp, c->elem[e].pair), t);
+  s->law->ops.traction(&s->lambda[3 * gp], &s->gap[3 * gp], &c->gpNormal[3 * gp], s->epsN[c->elem[e].pair], BoltContactStateEpsT(s, gp, c->elem[e].pair), t);
 }
 
 /* Each pair's resultant over all ranks, BOLT_PAIR_FORCE values per pair: the force on its side b,
@@ -145,7 +142,7 @@ PetscErrorCode BoltContactStateNodalForces(BoltContactState *s, Vec F)
 /* Each local point's state for the output: BOLT_POINT_OPEN, _STICK or _SLIP. */
 void BoltContactStatePointCodes(BoltContactState *s, unsigned char codes[])
 {
-  for (PetscInt gp = 0; gp < 4 * s->set->nelem; gp++) codes[gp] = !s->active[gp] ? BOLT_POINT_OPEN : s->released[gp] ? BOLT_POINT_SLIP : BOLT_POINT_STICK;
+  for (PetscInt gp = 0; gp < 4 * s->set->nelem; gp++) codes[gp] = s->law->ops.pointCode(s, gp);
 }
 
 /* Min and max normal traction over active points, and the largest tangential traction. */

@@ -1,63 +1,13 @@
-/* Contact laws at a contact point, registered by name (-contact_law) so that other laws plug in
-   beside the first. Physics only: no loops, no solvers. */
-#include "boltrom.h"
+/* Contact laws, registered by name (-contact_law) so that other laws plug in beside boltrom's:
+   each fills an ops table (include/private/contact.h) with what it does at one contact point,
+   one file per law (stick.c, strict.c, coulomb.c). Here the registry, and the answers to what
+   the other modules ask of a law. */
+#include "private/contact.h"
 
 PetscFunctionList BoltContactLawList = NULL;
 static PetscBool  BoltContactLawRegistered = PETSC_FALSE;
 
-/* stick: augmented Lagrangian with normal and tangential penalties, stick with elastic slip only
-   (no Coulomb limit). Trial traction t = lambda + epsN (g.n) n + epsT (g - (g.n) n), with the
-   gap g = u_b - u_a and n the outward normal of side a. */
-static void StickTraction(const PetscReal lambda[3], const PetscReal g[3], const PetscReal n[3], PetscReal epsN, PetscReal epsT, PetscReal t[3])
-{
-  const PetscReal gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
-
-  for (PetscInt k = 0; k < 3; k++) t[k] = lambda[k] + epsT * g[k] + (epsN - epsT) * gn * n[k];
-}
-
-/* stick (the paper's law): points are the 2x2 Gauss points of each face pair; a closed point
-   opens only when its traction is tensile beyond a band, an open one closes when it penetrates
-   beyond the activation gap; the penalty (200 E/m) is part of the model. */
-static PetscErrorCode BoltContactLawCreate_Stick(BoltContactLaw *law)
-{
-  PetscFunctionBeginUser;
-  law->traction      = StickTraction;
-  law->strict        = PETSC_FALSE;
-  law->penaltyFactor = 200.0;
-  PetscFunctionReturn(0);
-}
-
-/* strict: one-sided contact at every matched node pair (nodal quadrature): gap.n >= 0, normal
-   traction <= 0 and their product zero, with no band; a closed pair sticks (its whole gap
-   vector is closed). The penalty is only the augmentation parameter of the active-set loop:
-   stiff (3e7 E/m), so that one solve closes a step's gaps to the tolerance once the set is
-   right, and far enough from round-off (1e9 E/m moves the results by 2e-4). */
-static PetscErrorCode BoltContactLawCreate_Strict(BoltContactLaw *law)
-{
-  PetscFunctionBeginUser;
-  law->traction      = StickTraction;
-  law->strict        = PETSC_TRUE;
-  law->penaltyFactor = 3e7;
-  PetscFunctionReturn(0);
-}
-
-/* coulomb: the strict law's normal contact with Coulomb friction at every closed node pair. A
-   closed pair sticks (its tangential gap held by the penalty and its multiplier) while its
-   tangential traction is inside the cone mu |t_N|, and slips on the cone otherwise: a slipping
-   pair has no tangential penalty, and its tangential traction mu |t_N| along its slip over the
-   step is a force the loop updates after every solve (docs/model.md, friction). */
-static PetscErrorCode BoltContactLawCreate_Coulomb(BoltContactLaw *law)
-{
-  PetscFunctionBeginUser;
-  PetscCall(BoltContactLawCreate_Strict(law));
-  law->friction = PETSC_TRUE;
-  /* a softer augmentation than the strict law's: the same solves and results on the joint, and
-     the energy accounting balances to 1e-8 instead of 5e-7 (the stiff penalty's rounding in the
-     equilibrium of the tractions the ledger takes) */
-  law->penaltyFactor = 1e6;
-  PetscFunctionReturn(0);
-}
-
+/* Registers a law: create fills a zeroed law (its ops table and properties). */
 PetscErrorCode BoltContactLawRegister(const char name[], PetscErrorCode (*create)(BoltContactLaw *))
 {
   PetscFunctionBeginUser;
@@ -85,8 +35,8 @@ PetscErrorCode BoltContactLawRegisterAll(void)
   PetscFunctionReturn(0);
 }
 
-/* Fills law with the registered type's functions. */
-PetscErrorCode BoltContactLawSetType(MPI_Comm comm, const char type[], BoltContactLaw *law)
+/* A new law of the registered type (*law: replaced, the old one freed). */
+PetscErrorCode BoltContactLawCreate(MPI_Comm comm, const char type[], BoltContactLaw **law)
 {
   PetscErrorCode (*create)(BoltContactLaw *) = NULL;
 
@@ -94,36 +44,48 @@ PetscErrorCode BoltContactLawSetType(MPI_Comm comm, const char type[], BoltConta
   PetscCall(BoltContactLawRegisterAll());
   PetscCall(PetscFunctionListFind(BoltContactLawList, type, &create));
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "Unknown contact law '%s': -contact_law must be one of those bin/boltrom -help lists", type);
-  PetscCall((*create)(law));
+  PetscCall(PetscFree(*law));
+  PetscCall(PetscNew(law));
+  PetscCall((*create)(*law));
+  PetscCheck((*law)->ops.traction && (*law)->ops.trial && (*law)->ops.violation && (*law)->ops.stickStiffness && (*law)->ops.elementStiffness && (*law)->ops.pointCode, comm, PETSC_ERR_PLIB, "Contact law '%s' leaves a required operation empty (traction, trial, violation, stick stiffness, element stiffness, point code)", type);
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode BoltContactLawDestroy(BoltContactLaw **law)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(*law));
+  PetscFunctionReturn(0);
+}
+
+
 PetscBool BoltContactSetHasFriction(const BoltContactSet *c)
 {
-  return c->law.friction;
+  return c->law->friction;
 }
 
 PetscBool BoltContactSetIsComplementarity(const BoltContactSet *c)
 {
-  return c->law.strict;
+  return c->law->complementarity;
 }
 
 PetscBool BoltContactStateHasFriction(const BoltContactState *s)
 {
-  return s->law.friction;
+  return s->law->friction;
 }
 
 PetscBool BoltContactStateIsComplementarity(const BoltContactState *s)
 {
-  return s->law.strict;
+  return s->law->complementarity;
 }
 
+/* A penalty law's contact stores 1/2 q' K_c q; a complementarity law's closed gaps store none. */
 PetscBool BoltContactStateHasPenaltyEnergy(const BoltContactState *s)
 {
-  return (PetscBool)!s->law.strict;
+  return (PetscBool)!s->law->complementarity;
 }
 
 PetscBool BoltContactStateLambdaIsTraction(const BoltContactState *s)
 {
-  return (PetscBool)(s->law.strict && (s->augment || s->law.friction));
+  return (PetscBool)(s->law->complementarity && (s->augment || s->law->friction));
 }
