@@ -729,11 +729,13 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMSetPreloadState(BoltROM *, BoltNewmark *, PetscReal);
 PetscErrorCode BoltROMCheckAtS0(BoltROM *, BoltOperator *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscReal *);
 PetscErrorCode BoltHistoryErrors(PetscInt, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *);
-/* rom_field.c: the ROM's displacement in full, u = V q, while the ROM keeps its whole basis (built in this run) */
+/* rom_field.c: the ROM's displacement in full, u = V q, while the ROM keeps its whole basis (built, or read from its file) */
 PetscErrorCode BoltROMKeepBasis(BoltROM *, BV);
 PetscErrorCode BoltROMHasBasis(BoltROM *, PetscBool *);
 PetscErrorCode BoltROMExpand(BoltROM *, Vec, Vec);
 PetscErrorCode BoltROMReleaseBasis(BoltROM *);
+PetscErrorCode BoltROMBasisSave(BoltROM *, BV, BoltMesh *, PetscViewer);
+PetscErrorCode BoltROMBasisEnsure(BoltROM *, BoltMesh *, Vec, PetscBool *);
 
 /* ------------------------------------------------------------------ analysis.c */
 PetscErrorCode BoltStaticSolve(Mat, Vec, Vec, const char[]);

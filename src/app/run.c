@@ -141,6 +141,7 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   PetscCall(BoltROMSetUp(r->rom, r->asmb, r->contact, r->loads));
   PetscCall(BoltPreloadStateDestroy(&r->fomPreload));
   PetscCall(BoltROMOperatorCreate(r->rom, &r->romOp));
+  if (!r->opt.writeOutput) PetscCall(BoltROMReleaseBasis(r->rom)); /* kept only for the output's V q */
   if (r->opt.romCheckS0) PetscCall(BoltROMCheckAtS0(r->rom, r->romOp, r->asmb, r->contact, r->loads, &s->romCheckError));
   if (r->opt.exportDir[0]) PetscCall(BoltExportReduced(r->opt.exportDir, r->rom, r->romOp));
   PetscCall(BoltRunNewmarkCreate(r, r->romOp, &r->romNm));

@@ -252,6 +252,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
     PetscCall(BoltHDF5WriteValues(v, comm, "Vpoints", 3 * npts * n, n, rows, PETSC_TRUE));
     PetscCall(PetscFree(rows));
   }
+  PetscCall(BoltROMBasisSave(rom, V, m, v)); /* the whole basis, for the fields of a run that reads the file (rom_field.c) */
   if (rom->preloadState) PetscCall(BoltROMSavePreloadState(rom, v));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(BoltROMFingerprintWrite(&rom->fingerprint, v));
