@@ -21,7 +21,7 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
   s->activationGap = c->activationGap;
   /* the strict law judges a closed pair on its nodal traction (force over tributary area): with
      nodal quadrature that is the node pair's own multiplier, shared by its element corners */
-  s->openTest      = s->law->complementarity ? BOLT_OPEN_NODAL : c->openTest;
+  s->openTest      = BoltContactStateIsComplementarity(s) ? BOLT_OPEN_NODAL : c->openTest;
   for (PetscInt p = 0; p < c->npairs; p++) {
     s->epsN[p]         = c->epsN[p];
     s->epsT[p]         = c->epsT[p];

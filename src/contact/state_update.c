@@ -219,7 +219,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
         press = PetscMax(press, pressure); /* the pressure scale of the return maps' convergence test */
       }
       /* a sticking pair that opened and now closes to slide is in a new state, not a cycle */
-      if (s->law->complementarity && now && !s->active[gp] && !s->released[gp]) loc[2]++;
+      if (BoltContactStateIsComplementarity(s) && now && !s->active[gp] && !s->released[gp]) loc[2]++;
       if (now != s->active[gp]) {
         loc[0]++;
         s->dirty[e] = PETSC_TRUE;
