@@ -170,3 +170,18 @@ def test_rom_only_run_writes_its_displacement(rom_runs):
     alone, _ = fields(rom_runs / "built" / "run.h5", "rom_")
     assert sorted(alone) == ["rom_final_displacement", "rom_snapshot_000000"]  # 20 steps: the start only
     assert (rom_runs / "built" / "run-rom-series.xmf").exists()
+
+
+def test_rom_file_without_basis_runs_without_fields(rom_runs, joint_small, tmp_path):
+    """A ROM file written before files kept the basis still runs: its histories are written, its
+    displacement fields are not, and the log says why in one line."""
+    old = tmp_path / "old.rom.h5"
+    old.write_bytes((rom_runs / "r.rom.h5").read_bytes())
+    with h5py.File(old, "r+") as f:
+        del f["/rom/basis"]
+    out = tmp_path / "out"
+    proc = run_boltrom(ROM_SCENE + ["-mesh", joint_small[0], "-fom", "false", "-rom_file", old, "-output_dir", out])
+    assert [l for l in proc.stdout.splitlines() if "keeps no whole basis" in l]
+    with h5py.File(out / "run.h5") as f:
+        assert "rom/probe" in f and not any(k.startswith("rom_snapshot") or k == "rom_final_displacement" for k in f["vertex_fields"])
+    assert not (out / "run-rom-series.xmf").exists()

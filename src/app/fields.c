@@ -68,8 +68,7 @@ static PetscErrorCode FieldsRun(BoltOutput *h5, const BoltSummary *s, const char
   char      name[BOLTROM_NAME_LEN];
 
   PetscFunctionBeginUser;
-  if (rom) PetscCall(BoltROMBasisEnsure(rom, mesh, s->loads->load, &whole));
-  if (!whole) PetscCall(PetscPrintf(mesh->comm, "The ROM file keeps no whole basis (written before files kept it): no rom_ displacement fields; rebuild the ROM for them\n"));
+  if (rom) PetscCall(BoltROMBasisEnsure(rom, mesh, s->loads->load, &whole)); /* else it says why not */
   PetscCall(VecDuplicate(s->loads->load, &u));
   if (whole) {
     PetscCall(PetscSNPrintf(name, sizeof(name), "%s_final_displacement", model));

@@ -195,7 +195,7 @@ static PetscErrorCode BoltROMBasisLoad(BoltROM *rom, PetscViewer v, const char f
 }
 
 /* Whether the ROM can give its displacement in full: with the basis it built, or one its file
-   keeps (read here); a file written before the files kept it has none. */
+   keeps (read here); a file written before the files kept it has none (said in the log). */
 PetscErrorCode BoltROMBasisEnsure(BoltROM *rom, BoltMesh *mesh, Vec layout, PetscBool *has)
 {
   const char *file = rom->opt.file;
@@ -207,6 +207,7 @@ PetscErrorCode BoltROMBasisEnsure(BoltROM *rom, BoltMesh *mesh, Vec layout, Pets
   PetscCall(PetscViewerHDF5Open(rom->comm, file, FILE_MODE_READ, &v));
   PetscCall(PetscViewerHDF5HasDataset(v, "/rom/basis/V", has));
   if (*has) PetscCall(BoltROMBasisLoad(rom, v, file, mesh, layout));
+  else PetscCall(PetscPrintf(rom->comm, "ROM file %s keeps no whole basis (written before files kept it): no rom_ displacement fields; rebuild it for them\n", file));
   PetscCall(PetscViewerDestroy(&v));
   PetscFunctionReturn(0);
 }
