@@ -1,5 +1,6 @@
-/* The contact state's updates in the dual loop: trial tractions, augmentations of the
-   multipliers, the stick/slip return and the active-set decisions, re-closing and anchoring. */
+/* The contact state's updates in the dual loop: augmentations of the multipliers, the
+   active-set decisions, re-closing and anchors, the multipliers the solve takes. What a point
+   does under its law (trial traction, return map, re-closing) is the law's (src/contact/laws/). */
 #include "private/contact.h"
 #include <stdint.h>
 #include <string.h>
