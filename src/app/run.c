@@ -106,9 +106,19 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltNewmarkPreload(r->fomNm));
   PetscCall(PetscLogStagePop());
   PetscCall(BoltContactStateNormalForcePerPair(r->fomOp->state, s->preloadForce));
-  PetscCall(PetscPrintf(r->comm, "Preload %g N: static contact solve in %g outer / %g inner iterations; normal force per pair [N]:", (double)r->loads->preloadForce, (double)r->fomNm->staticOuter, (double)r->fomNm->staticInner));
-  for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(PetscPrintf(r->comm, " %s %.6f", contact->pairName[p], (double)s->preloadForce[p]));
-  PetscCall(PetscPrintf(r->comm, "\n"));
+  PetscCall(PetscPrintf(r->comm, "Preload %g N: static contact solve in %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations\n", (double)r->loads->preloadForce, (PetscInt)r->fomNm->staticOuter, (PetscInt)r->fomNm->staticInner));
+  if (contact->npairs <= 6) { /* a line each would be long for many pairs: then their range (the summary has each) */
+    PetscCall(PetscPrintf(r->comm, "  normal force per pair [N]:"));
+    for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(PetscPrintf(r->comm, " %s %.1f", contact->pairName[p], (double)s->preloadForce[p]));
+    PetscCall(PetscPrintf(r->comm, "\n"));
+  } else {
+    PetscReal lo = PETSC_MAX_REAL, hi = PETSC_MIN_REAL;
+    for (PetscInt p = 0; p < contact->npairs; p++) {
+      lo = PetscMin(lo, s->preloadForce[p]);
+      hi = PetscMax(hi, s->preloadForce[p]);
+    }
+    PetscCall(PetscPrintf(r->comm, "  normal force of the %" PetscInt_FMT " pairs from %.1f to %.1f N (each in the summary)\n", contact->npairs, (double)lo, (double)hi));
+  }
   PetscCall(BoltMemoryPrint(r->comm, "the FOM's preload"));
   PetscCall(BoltContactStateTractionStats(r->fomOp->state, &s->tractionStats[0], &s->tractionStats[1], &s->tractionStats[2]));
   s->preloadActive      = r->fomOp->state->nactive;

@@ -191,9 +191,7 @@ PetscErrorCode BoltNodePairPatterns(MPI_Comm comm, PetscInt npair, const PetscIn
   PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("S", "N", &bm, &bn, Ra, &bm, sv, U, &bm, &dummy, &one, work, &lwork, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK gesvd failed on the node pairs' snapshot patterns (info %d)", (int)info);
   while (k < PetscMin(kmax, PetscMin(npair, ns)) && sv[k] > 1e-8 * sv[0]) k++;
-  PetscCall(PetscPrintf(comm, "ROM: %" PetscInt_FMT " node pairs in %" PetscInt_FMT " snapshots, singular values relative to the largest:", npair, ns));
-  for (PetscInt l = 0; l < PetscMin(k + 1, PetscMin(npair, ns)); l++) PetscCall(PetscPrintf(comm, " %.1e", (double)(sv[l] / sv[0])));
-  PetscCall(PetscPrintf(comm, " (%" PetscInt_FMT " kept)\n", k));
+  PetscCall(PetscPrintf(comm, "ROM: %" PetscInt_FMT " node pairs in %" PetscInt_FMT " snapshots: %" PetscInt_FMT " patterns kept, the last at %.1e of the largest singular value, the next at %.1e\n", npair, ns, k, k > 0 ? (double)(sv[k - 1] / sv[0]) : 0.0, k < PetscMin(npair, ns) ? (double)(sv[k] / sv[0]) : 0.0));
   PetscCall(PetscMalloc1(npair * k + 1, patterns));
   PetscCall(PetscArraycpy(*patterns, U, npair * k));
   *kout = k;

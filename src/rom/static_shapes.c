@@ -134,7 +134,7 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
      needs far fewer iterations on fine meshes. The preload itself
      stays the FOM's; this operator's state is its own, so the FOM's penalties are not touched. */
   PetscCall(BoltContactStateSetPenaltyScale(s, staticPenaltyScale, 1.0)); /* the band as it is */
-  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %g outer / %g inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (double)outer, (double)inner, s->nactive, c->ngpGlobal));
+  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (PetscInt)outer, (PetscInt)inner, s->nactive, c->ngpGlobal));
   PetscFunctionReturn(0);
 }
 
@@ -336,7 +336,7 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
   PetscCall(VecDuplicate(q, &extra[1]));
   PetscCall(VecWAXPY(extra[1], -1.0, extra[0], q));
   PetscCall(VecScale(extra[1], 1.0 / raise));
-  PetscCall(PetscPrintf(rom->comm, "; load response (load x %g) %g inner iterations\n", (double)raise, (double)nin));
+  PetscCall(PetscPrintf(rom->comm, "; load response (load x %g) %" PetscInt_FMT " inner iterations\n", (double)raise, nin));
   /* Opening shapes: the node pairs whose state the load changes statically at -openingScale or
      +openingScale x its amplitude (a step load's response swings up to twice its static one, a
      sine load's to either side); under friction also those it makes slip. The positive one
