@@ -61,3 +61,17 @@ def test_source_layout_sizes_and_layers():
     breaches = [l for l in proc.stdout.splitlines() if not l.startswith("check-layout:") and "struct body" not in l]
     assert not breaches, "\n".join(breaches)
     assert "check-layout:" in proc.stdout
+
+
+def test_log_lines_are_short_and_counts_are_integers(joint_small, tmp_path):
+    """A run of both models with a ROM that has opening shapes and closed-contact Krylov vectors (the
+    steps that used to print a value per shape) prints no line over 200 characters, and its
+    iteration counts as integers."""
+    mesh, _ = joint_small
+    proc = run_boltrom(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-fom", "-rom",
+                        "-load_force", "300", "-ts_dt", "1e-4", "-ts_end", "2e-3", "-output_dir", tmp_path], ranks=2)
+    lines = proc.stdout.splitlines()
+    assert any(l.startswith("ROM:") for l in lines) and any("outer" in l for l in lines)
+    long = [(len(l), l[:80]) for l in lines if len(l) > 200]
+    assert not long, long
+    assert not re.search(r"\d\. (outer|inner)", proc.stdout), re.findall(r".{40}\d\. (?:outer|inner).{20}", proc.stdout)
