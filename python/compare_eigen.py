@@ -2,21 +2,28 @@
 """First eigenfrequencies of the tied joint, full model against ROM, from the matrices that
 `boltrom -export_matrices DIR` writes (PETSc binary): the full pair (K_tied, M) by SLEPc
 (shift-and-invert about 0, MUMPS), the reduced pair (rom_K_tied, rom_M) densely with LAPACK.
-Prints a markdown table and writes it to DIR/eigen.md.
-Usage: python/compare_eigen.py DIR [NEV]   (serial or under mpiexec)"""
+Prints a markdown table and writes it to DIR/eigen.md. Runs serial or under mpiexec."""
+import argparse
+import functools
 import sys
 from pathlib import Path
 
 import numpy as np
-import scipy.linalg
-import slepc4py
 
-slepc4py.init(sys.argv[:1])
-from petsc4py import PETSc  # noqa: E402
-from slepc4py import SLEPc  # noqa: E402
+
+@functools.lru_cache(maxsize=None)
+def petsc():
+    """petsc4py and slepc4py, initialised once without this script's command line (imported only
+    to compute, so that --help needs neither)."""
+    import slepc4py
+    slepc4py.init(sys.argv[:1])
+    from petsc4py import PETSc
+    from slepc4py import SLEPc
+    return PETSc, SLEPc
 
 
 def load(path, comm, dense=False):
+    PETSc, _ = petsc()
     viewer = PETSc.Viewer().createBinary(str(path), "r", comm=comm)
     A = PETSc.Mat().create(comm)
     if dense:
@@ -27,6 +34,7 @@ def load(path, comm, dense=False):
 
 
 def full_frequencies(d, nev):
+    PETSc, SLEPc = petsc()
     comm = PETSc.COMM_WORLD
     K, M = load(d / "K_tied.petsc", comm), load(d / "M.petsc", comm)
     eps = SLEPc.EPS().create(comm)
@@ -48,6 +56,8 @@ def full_frequencies(d, nev):
 
 
 def reduced_frequencies(d, nev):
+    import scipy.linalg
+    PETSc, _ = petsc()
     K, M = load(d / "rom_K_tied.petsc", PETSc.COMM_SELF, True), load(d / "rom_M.petsc", PETSc.COMM_SELF, True)
     Kd, Md = K.getDenseArray().copy(), M.getDenseArray().copy()
     Kd, Md = 0.5 * (Kd + Kd.T), 0.5 * (Md + Md.T)  # symmetric up to rounding of the projection
@@ -56,6 +66,7 @@ def reduced_frequencies(d, nev):
 
 
 def main(d, nev=10):
+    PETSc, _ = petsc()
     d, nev = Path(d), int(nev)
     f_full = full_frequencies(d, nev)
     f_rom = reduced_frequencies(d, nev)
@@ -68,5 +79,13 @@ def main(d, nev=10):
         (d / "eigen.md").write_text(text)
 
 
+def parse_args(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("dir", metavar="DIR", help="the folder of boltrom -export_matrices DIR (run with -rom)")
+    parser.add_argument("nev", metavar="NEV", nargs="?", type=int, default=10, help="how many frequencies (default: %(default)s)")
+    return parser.parse_args(argv)
+
+
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    args = parse_args()
+    main(args.dir, args.nev)

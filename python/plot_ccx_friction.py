@@ -3,9 +3,9 @@
 (--only friction --json FILE): the load point's u_x due to the load in both codes, with the
 relative difference, and the plate interface's shear over mu times its normal force, with the
 onset of macro-slip (ccx's interface at the script's --macro-slip fraction) marked.
-Usage: python/plot_ccx_friction.py OUT.png RUN.json [RUN.json ...]"""
+Example: python/plot_ccx_friction.py OUT.png RUN.json [RUN.json ...]"""
+import argparse
 import json
-import sys
 from pathlib import Path
 
 import matplotlib
@@ -18,8 +18,6 @@ def label(path, fr):
 
 
 def main(png, *files):
-    if not files:
-        sys.exit(__doc__)
     fig, (ax, ar, ap) = plt.subplots(1, 3, figsize=(15, 4.2))
     for i, path in enumerate(files):
         fr = json.loads(Path(path).read_text())["friction"]
@@ -49,5 +47,13 @@ def main(png, *files):
     print(f"wrote {png}")
 
 
+def parse_args(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("png", metavar="OUT.png", help="the figure to write")
+    parser.add_argument("files", metavar="RUN.json", nargs="+", help="JSON of scripts/ccx-crosscheck --only friction --json FILE")
+    return parser.parse_args(argv)
+
+
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    args = parse_args()
+    main(args.png, *args.files)

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Plots the deformed boundary of a boltrom result (HDF5 from -output_dir) to a PNG.
-Usage: python/plot_static.py output/tied-joint/joint.h5 output/tied-joint/static.png"""
-import sys
+"""Plots the deformed boundary of a boltrom result (HDF5 from -output_dir) to a PNG, coloured by
+the magnitude of a vertex field.
+Example: python/plot_static.py output/tied-joint/joint.h5 output/tied-joint/static.png"""
+import argparse
 
 import h5py
 import matplotlib
@@ -45,5 +46,14 @@ def main(h5path, png, field="displacement"):
     print(f"wrote {png}")
 
 
+def parse_args(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("h5path", metavar="RESULT.h5", help="a boltrom result file with a mesh and vertex fields")
+    parser.add_argument("png", metavar="OUT.png", help="the figure to write")
+    parser.add_argument("field", nargs="?", default="displacement", help="the vertex field to draw (default: %(default)s)")
+    return parser.parse_args(argv)
+
+
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    args = parse_args()
+    main(args.h5path, args.png, args.field)
