@@ -1,7 +1,7 @@
 /* The fields and histories of a run in <dir>/<name>.h5, with the XDMF files beside it that
    ParaView opens: the tied joint's fields, then the FOM's and the ROM's runs through one writer
    (the ROM's displacement in full, V q, while it keeps its whole basis). */
-#include "boltrom.h"
+#include "private/app.h"
 
 /* A model's contact state at the end of its run, at the nodes (BoltOutputContactState). */
 static PetscErrorCode FieldsFinalContactState(BoltOutput *h5, BoltMesh *mesh, BoltContactState *state, const char name[])

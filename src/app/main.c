@@ -2,7 +2,7 @@ static const char help[] = "boltrom: vibration of bolted joints with contact, fu
                            "Usage: mpiexec -n 2 bin/boltrom -options_file SCENE.yaml [-option value ...] [-log_view]\n"
                            "boltrom's own options first, by object; then those of the PETSc and SLEPc solvers it configures.\n\n";
 
-#include "boltrom.h"
+#include "private/app.h"
 
 /* Every object made and configured, the solvers' and time integrators' options read: nothing is
    computed yet. checkpointBase: the checkpoints' base name if they are written, else "". */

@@ -14,7 +14,7 @@
      pair_names       strings  the contact pairs, in the order of friction
      friction         reals    the Coulomb coefficient per pair, 0 for a frictionless law
      options          string   the run's options, as PetscOptionsGetAll gives them */
-#include "boltrom.h"
+#include "private/app.h"
 
 /* In the order of BoltLoadHistory, as -load_history takes them. */
 static const char *const boltLoadHistoryNames[] = {"step", "sine", "ramp", "release", "sweep"};

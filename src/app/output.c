@@ -1,7 +1,7 @@
 /* Output: an HDF5 file (PetscViewerHDF5) with the mesh, part ids and vertex fields, and an XDMF
    file beside it so that ParaView opens it. Every file is written under a temporary name and
    renamed when complete, so a failed run leaves no half-written file. */
-#include "boltrom.h"
+#include "private/app.h"
 #include <petscviewerhdf5.h>
 
 /* Global vertex number of a local vertex (ghosts are encoded -(g+1) by DMPlex). */

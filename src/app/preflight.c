@@ -1,7 +1,7 @@
 /* Checks made before any computation, so that a run that would fail at its end fails at once,
    with nothing written: options that no object reads (a misspelling, a leftover) and folders
    that cannot be written. */
-#include "boltrom.h"
+#include "private/app.h"
 #include <ctype.h>
 #include <fcntl.h>
 #include <sys/stat.h>

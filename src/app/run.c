@@ -1,6 +1,6 @@
 /* A run: what it does and where it writes (main's options), and its stages once the model is set
    up: the tied joint's analyses, the full-order model, the reduced-order model. */
-#include "boltrom.h"
+#include "private/app.h"
 
 PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
 {

@@ -1,7 +1,7 @@
 /* A run's JSON summary (-summary): the model, the load, the tied analyses, and the FOM's and the
    ROM's runs with their counters and phase times; the keys are listed in the README. The HDF5/XDMF
    file of its fields and histories is fields.c's. */
-#include "boltrom.h"
+#include "private/app.h"
 
 /* The figures of a Newmark run that the FOM and the ROM share; full (the FOM's) adds the time
    step, the largest iteration counts, the contact points and the probe's range. */
@@ -192,38 +192,12 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
 /* The reduced model (offline figures) and its run; against the FOM's run if there is one. */
 static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
 {
-  const BoltROM *rom = s->rom;
-
   PetscFunctionBeginUser;
   PetscCall(BoltJSONBeginObject(j, "rom"));
-  PetscCall(BoltJSONInt(j, "dim", rom->n));
-  PetscCall(BoltJSONInt(j, "order", rom->order));
-  PetscCall(BoltJSONReal(j, "s0", rom->s0));
-  PetscCall(BoltJSONInt(j, "inputs", rom->ninputs));
-  PetscCall(BoltJSONInt(j, "n_ccm", rom->nCCM));
-  PetscCall(BoltJSONInt(j, "n_jim", rom->nJIM));
-  PetscCall(BoltJSONString(j, "source", rom->fromFile ? "file" : "built"));
-  { /* the offline phase and its parts [s] */
-    const char     *key[] = {"offline_s", "offline_inputs_s", "offline_basis_s", "offline_factor_s", "offline_solves_s", "offline_orth_s", "offline_interface_s", "offline_projection_s"};
-    const PetscReal t[]   = {rom->tOffline, rom->tInputs, rom->tBasis, rom->tFactor, rom->tSolve, rom->tOrth, rom->tInterface, rom->tProject};
-    for (PetscInt k = 0; k < 8; k++) PetscCall(BoltJSONReal(j, key[k], t[k]));
-  }
-  PetscCall(BoltJSONString(j, "contact_law", rom->augment ? "augmented" : "penalty"));
-  PetscCall(BoltJSONInt(j, "preload_state", rom->preloadState));
-  PetscCall(BoltJSONReal(j, "contact_penalty_scale", rom->penaltyScale));
-  PetscCall(BoltJSONReal(j, "contact_band_scale", rom->bandScale));
-  PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
-  PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
-  PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));
-  PetscCall(BoltJSONInt(j, "snapshot_modes", rom->nSnapshotModes));
-  PetscCall(BoltJSONInt(j, "cone_pairs", rom->nConePairs));
-  PetscCall(BoltJSONInt(j, "cone_modes", rom->nConeModes));
-  PetscCall(BoltJSONInt(j, "update_rank", rom->updateRankUsed));
-  PetscCall(BoltJSONInt(j, "update_largest_batch", BoltROMUpdateLargestBatch(rom->update)));
+  PetscCall(BoltROMSummaryWrite(s->rom, j));
   PetscCall(BoltJSONInt(j, "held_points", s->romRun->op->state->mayChange != NULL));
   PetscCall(SummaryNewmarkRun(j, s->romRun, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));
-  if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(j, "orthogonality", rom->orthogonality));
   PetscCall(BoltJSONEndObject(j));
   if (s->fomRun) {
     PetscCall(BoltJSONReal(j, "speedup", s->fomRun->tOnline / s->romRun->tOnline));
@@ -240,18 +214,18 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
 /* Writes the summary to path (rank 0, under a temporary name renamed when complete). */
 PetscErrorCode BoltSummaryWrite(MPI_Comm comm, const char path[], const BoltSummary *s)
 {
-  BoltJSON    j;
+  BoltJSON   *j;
   PetscMPIInt size;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(BoltJSONOpen(comm, path, &j));
-  PetscCall(SummaryModel(&j, s, size));
-  PetscCall(BoltSummaryWriteLoad(&j, s));
-  PetscCall(SummaryTied(&j, s));
-  if (s->fomRun) PetscCall(SummaryFOM(&j, s));
-  if (s->rom) PetscCall(SummaryROM(&j, s));
-  PetscCall(BoltJSONReal(&j, "setup_s", s->tSetUp));
+  PetscCall(SummaryModel(j, s, size));
+  PetscCall(BoltSummaryWriteLoad(j, s));
+  PetscCall(SummaryTied(j, s));
+  if (s->fomRun) PetscCall(SummaryFOM(j, s));
+  if (s->rom) PetscCall(SummaryROM(j, s));
+  PetscCall(BoltJSONReal(j, "setup_s", s->tSetUp));
   PetscCall(BoltJSONClose(&j));
   PetscFunctionReturn(0);
 }

@@ -2,7 +2,7 @@
    (-verify_fields: the same K x and M x on any number of ranks; a linear field is the patch
    test), the rigid motions of each free part (-check_rigid), and the tied stiffness and the mass
    matrix, full and reduced, in PETSc binary format for petsc4py (-export_matrices). */
-#include "boltrom.h"
+#include "private/app.h"
 
 /* A matrix in PETSc binary format, written under a temporary name and renamed. Sequential
    matrices (the ROM's, the same on every rank) are written by rank 0. */
@@ -42,15 +42,16 @@ PetscErrorCode BoltExportTied(const char dir[], Mat Ktied, Mat M)
    rom_K_tied.petsc and rom_M.petsc in dir. Leaves the contact state reset (all active). */
 PetscErrorCode BoltExportReduced(const char dir[], BoltROM *rom, BoltOperator *romOp)
 {
-  Mat Kcr, Kt;
+  Mat Kcr, Kt, Mr, Kr;
 
   PetscFunctionBeginUser;
+  PetscCall(BoltROMGetMatrices(rom, &Mr, &Kr));
   PetscCall(BoltContactStateReset(romOp->state));
   PetscCall(romOp->ops.contactStiffness(romOp, &Kcr));
-  PetscCall(MatDuplicate(rom->Kr, MAT_COPY_VALUES, &Kt));
+  PetscCall(MatDuplicate(Kr, MAT_COPY_VALUES, &Kt));
   PetscCall(MatAXPY(Kt, 1.0, Kcr, SAME_NONZERO_PATTERN));
   PetscCall(BoltExportMatrix(Kt, dir, "rom_K_tied.petsc"));
-  PetscCall(BoltExportMatrix(rom->Mr, dir, "rom_M.petsc"));
+  PetscCall(BoltExportMatrix(Mr, dir, "rom_M.petsc"));
   PetscCall(MatDestroy(&Kt));
   PetscFunctionReturn(0);
 }

@@ -10,7 +10,7 @@
    V_IR = orth([V_CCM V_JIM]); T = blockdiag(I, V_IR). The block Krylov basis of the T-projected
    model is then built with the bordered solve y -> T (T' Kt T)^-1 T' y (interior solves and the
    small Schur complement V_IR' S_t V_IR), so T' Kt T is never formed. */
-#include "boltrom.h"
+#include "private/rom.h"
 #include "boltrom_interface.h"
 
 static PetscErrorCode IRFullSolve(BoltInterface *ir, Vec b, Vec x)

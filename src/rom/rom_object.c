@@ -181,6 +181,46 @@ PetscErrorCode BoltROMView(BoltROM *rom, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* The ROM's keys of the run summary: its size, the offline phase's times [s], the settings used. */
+PetscErrorCode BoltROMSummaryWrite(BoltROM *rom, BoltJSON *j)
+{
+  const char     *key[] = {"offline_s", "offline_inputs_s", "offline_basis_s", "offline_factor_s", "offline_solves_s", "offline_orth_s", "offline_interface_s", "offline_projection_s"};
+  const PetscReal t[]   = {rom->tOffline, rom->tInputs, rom->tBasis, rom->tFactor, rom->tSolve, rom->tOrth, rom->tInterface, rom->tProject};
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltJSONInt(j, "dim", rom->n));
+  PetscCall(BoltJSONInt(j, "order", rom->order));
+  PetscCall(BoltJSONReal(j, "s0", rom->s0));
+  PetscCall(BoltJSONInt(j, "inputs", rom->ninputs));
+  PetscCall(BoltJSONInt(j, "n_ccm", rom->nCCM));
+  PetscCall(BoltJSONInt(j, "n_jim", rom->nJIM));
+  PetscCall(BoltJSONString(j, "source", rom->fromFile ? "file" : "built"));
+  for (PetscInt k = 0; k < 8; k++) PetscCall(BoltJSONReal(j, key[k], t[k]));
+  PetscCall(BoltJSONString(j, "contact_law", rom->augment ? "augmented" : "penalty"));
+  PetscCall(BoltJSONInt(j, "preload_state", rom->preloadState));
+  PetscCall(BoltJSONReal(j, "contact_penalty_scale", rom->penaltyScale));
+  PetscCall(BoltJSONReal(j, "contact_band_scale", rom->bandScale));
+  PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
+  PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
+  PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));
+  PetscCall(BoltJSONInt(j, "snapshot_modes", rom->nSnapshotModes));
+  PetscCall(BoltJSONInt(j, "cone_pairs", rom->nConePairs));
+  PetscCall(BoltJSONInt(j, "cone_modes", rom->nConeModes));
+  PetscCall(BoltJSONInt(j, "update_rank", rom->updateRankUsed));
+  PetscCall(BoltJSONInt(j, "update_largest_batch", BoltROMUpdateLargestBatch(rom->update)));
+  if (rom->orthogonality >= 0) PetscCall(BoltJSONReal(j, "orthogonality", rom->orthogonality));
+  PetscFunctionReturn(0);
+}
+
+/* The reduced mass and stiffness (referenced by the ROM: not to be destroyed). */
+PetscErrorCode BoltROMGetMatrices(BoltROM *rom, Mat *M, Mat *K)
+{
+  PetscFunctionBeginUser;
+  if (M) *M = rom->Mr;
+  if (K) *K = rom->Kr;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltROMGetFile(BoltROM *rom, const char *file[])
 {
   PetscFunctionBeginUser;

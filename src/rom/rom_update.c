@@ -20,7 +20,7 @@
    and put in the order of their names (element key and node): the ROM's history has the same
    bits on any partition (each rank makes the same BLAS and LAPACK calls on the same data, or
    takes its share of calls cut the same way on any number of ranks and gathers the others'). */
-#include "boltrom.h"
+#include "private/rom.h"
 #include <petscblaslapack.h>
 
 #define ROM_REFERENCES 4 /* kept factorisations: 4 to 16 did about as well (docs/results.md) */

@@ -1,5 +1,6 @@
-/* The JSON summary's writer: written on rank 0 under a temporary name, renamed when complete. */
-#include "boltrom.h"
+/* A JSON writer for the run's summary: written on rank 0 under a temporary name, renamed when
+   complete; the other ranks hold an empty writer. Each module writes its own keys. */
+#include "private/sys.h"
 
 static void BoltJSONKey(BoltJSON *j, const char key[])
 {
@@ -9,12 +10,14 @@ static void BoltJSONKey(BoltJSON *j, const char key[])
   if (key) fprintf(j->fp, "\"%s\": ", key);
 }
 
-PetscErrorCode BoltJSONOpen(MPI_Comm comm, const char path[], BoltJSON *j)
+PetscErrorCode BoltJSONOpen(MPI_Comm comm, const char path[], BoltJSON **jp)
 {
   PetscMPIInt rank;
+  BoltJSON   *j;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(j, sizeof(*j)));
+  PetscCall(PetscNew(jp));
+  j = *jp;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank) PetscFunctionReturn(0);
   PetscCall(PetscStrncpy(j->final, path, sizeof(j->final)));
@@ -86,13 +89,19 @@ PetscErrorCode BoltJSONRealArray(BoltJSON *j, const char key[], PetscInt n, cons
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltJSONClose(BoltJSON *j)
+/* Completes the file and frees the writer. */
+PetscErrorCode BoltJSONClose(BoltJSON **jp)
 {
+  BoltJSON *j = *jp;
+
   PetscFunctionBeginUser;
-  if (!j->fp) PetscFunctionReturn(0);
-  fprintf(j->fp, "\n}\n");
-  PetscCheck(fclose(j->fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", j->tmp);
-  j->fp = NULL;
-  PetscCheck(rename(j->tmp, j->final) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", j->tmp, j->final);
+  if (!j) PetscFunctionReturn(0);
+  if (j->fp) {
+    fprintf(j->fp, "\n}\n");
+    PetscCheck(fclose(j->fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s", j->tmp);
+    j->fp = NULL;
+    PetscCheck(rename(j->tmp, j->final) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", j->tmp, j->final);
+  }
+  PetscCall(PetscFree(*jp));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,75 @@
+#ifndef BOLTROM_PRIVATE_APP_H
+#define BOLTROM_PRIVATE_APP_H
+#include "boltrom.h"
+
+struct _n_BoltOutput {
+  MPI_Comm comm;
+  char     dir[PETSC_MAX_PATH_LEN];
+  char     name[BOLTROM_NAME_LEN];
+  char     h5tmp[PETSC_MAX_PATH_LEN], h5final[PETSC_MAX_PATH_LEN];
+  PetscViewer viewer;
+  PetscInt nfields;
+  char     field[16][BOLTROM_NAME_LEN];
+  PetscInt fieldComponents[16];
+  PetscBool fieldOnCells[16];
+  PetscInt  nseries;            /* temporal XDMF series of displacement snapshots: the FOM's, the ROM's */
+  struct {
+    char       prefix[8];       /* of the series' fields: <prefix>snapshot_<i>, <prefix>contact_state_<i> */
+    PetscInt   n;
+    PetscReal *time;
+    PetscBool  states;          /* with the contact state at each snapshot */
+  } series[2];
+};
+
+struct _n_BoltRunOptions {
+  char      outputDir[PETSC_MAX_PATH_LEN];
+  char      outputName[BOLTROM_NAME_LEN];
+  char      summary[PETSC_MAX_PATH_LEN];
+  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom, rom, romCheckS0;
+  char      exportDir[PETSC_MAX_PATH_LEN]; /* tied K and M, full and reduced, for petsc4py */
+  PetscInt  verifyField;                   /* 0 smooth, 1 linear */
+  PetscInt  nev;
+};
+
+struct _n_BoltSummary {
+  BoltMesh       *mesh;
+  BoltAssembler  *asmb;
+  BoltContactSet *contact;
+  BoltLoadSet    *loads;
+  PetscReal       tSetUp;
+  PetscBool       staticSolve;                   /* "static": the tied joint under the load */
+  Vec             u;                             /* its displacement */
+  PetscReal       probe, tStatic;
+  Vec             x, Kx, Mx;                     /* -verify_fields, or NULL */
+  PetscInt        nev, nconv;                    /* "modal" if nev > 0 */
+  PetscReal       freq[100], tModal;
+  PetscBool       checkRigid;                    /* "rigid_residual_per_part" */
+  PetscReal       rigid[BOLTROM_MAX_PARTS];
+  BoltNewmark    *fomRun;                        /* "preload" and "fom": the FOM's run */
+  PetscReal       preloadForce[BOLTROM_MAX_PAIRS]; /* the FOM's preloaded state, before its transient */
+  PetscReal       tractionStats[3], preloadPenetration, preloadChange;
+  PetscInt        preloadActive, preloadSliding;
+  BoltROM        *rom;                           /* "rom": the reduced model and its run */
+  BoltNewmark    *romRun;
+  PetscBool       romCheckS0;
+  PetscReal       romCheckError;
+  PetscReal       errL2, errMean;                /* "speedup" and "errors": with both runs */
+};
+
+struct _n_BoltRun {
+  MPI_Comm          comm;
+  BoltRunOptions    opt;
+  BoltMesh         *mesh;
+  BoltAssembler    *asmb;
+  BoltContactSet   *contact;
+  BoltLoadSet      *loads;
+  Vec               u;
+  Mat               Ktied;
+  BoltOperator     *fomOp, *romOp;
+  BoltNewmark      *fomNm, *romNm;
+  BoltPreloadState *fomPreload;
+  BoltROM          *rom;
+  BoltSummary       sum;
+};
+
+#endif
