@@ -90,13 +90,7 @@ PetscErrorCode BoltMeshFaceVertices(BoltMesh *, PetscInt, PetscInt *, PetscInt[4
 PetscErrorCode BoltMeshFillVertexField(BoltMesh *, PetscErrorCode (*)(const PetscReal[3], PetscInt, PetscReal[3], void *), void *, Vec);
 
 /* ------------------------------------------------------------------ assembly.c */
-typedef struct {
-  BoltMesh  *mesh;
-  Mat        K, M;             /* structural stiffness and consistent mass, clamp removed */
-  PetscReal  rayleighAlpha, rayleighBeta;
-  PetscReal  massPerPart[BOLTROM_MAX_PARTS], volumePerPart[BOLTROM_MAX_PARTS];
-  PetscInt   elementsPerPart[BOLTROM_MAX_PARTS];
-} BoltAssembler;
+typedef struct _n_BoltAssembler BoltAssembler;
 
 PetscErrorCode BoltAssemblerCreate(BoltMesh *, BoltAssembler **);
 PetscErrorCode BoltAssemblerSetFromOptions(BoltAssembler *);
@@ -104,6 +98,10 @@ PetscErrorCode BoltAssemblerSetUp(BoltAssembler *);
 PetscErrorCode BoltAssemblerDamping(BoltAssembler *, Mat *);
 PetscErrorCode BoltAssemblerPartStiffness(BoltAssembler *, PetscInt, Mat *);
 PetscErrorCode BoltAssemblerView(BoltAssembler *, PetscViewer);
+PetscErrorCode BoltAssemblerGetMatrices(BoltAssembler *, Mat *, Mat *);
+PetscErrorCode BoltAssemblerGetRayleigh(BoltAssembler *, PetscReal *, PetscReal *);
+PetscErrorCode BoltAssemblerGetMesh(BoltAssembler *, BoltMesh **);
+PetscErrorCode BoltAssemblerGetPart(BoltAssembler *, PetscInt, PetscReal *, PetscReal *, PetscInt *);
 PetscErrorCode BoltAssemblerDestroy(BoltAssembler **);
 
 /* ------------------------------------------------------------------ contact.c */
@@ -384,17 +382,11 @@ PetscErrorCode BoltOperatorDestroy(BoltOperator **);
 
 /* A static preloaded equilibrium, kept so that a later solve of the same scene (the ROM's offline
    phase after the FOM's run) starts from it instead of solving it again. */
-typedef struct {
-  Vec        q, preload;     /* displacement; preload vector as calibrated */
-  PetscReal *lambda;         /* 12 per local contact element */
-  PetscBool *active;         /* 4 per local contact element */
-  PetscBool *released;       /* 4 per local contact element */
-  PetscReal *anchor;         /* 12 per local contact element: where re-closed points stick */
-  PetscReal  outer, inner;   /* iterations its solve took */
-} BoltPreloadState;
+typedef struct _n_BoltPreloadState BoltPreloadState;
 
 PetscErrorCode BoltPreloadStateCreate(BoltOperator *, Vec, PetscReal, PetscReal, BoltPreloadState **);
 PetscErrorCode BoltPreloadStateApply(const BoltPreloadState *, BoltOperator *, Vec);
+PetscErrorCode BoltPreloadStateGetIterations(const BoltPreloadState *, PetscReal *, PetscReal *);
 PetscErrorCode BoltPreloadStateDestroy(BoltPreloadState **);
 
 /* fom.c: the full-order operator */
@@ -408,42 +400,6 @@ typedef PetscErrorCode (*BoltDualInnerFn)(BoltDual *, Vec, Vec, PetscInt *);
 extern PetscFunctionList BoltDualInnerList;
 PetscErrorCode BoltDualInnerRegister(const char[], BoltDualInnerFn);
 
-struct BoltDual_s {
-  BoltOperator   *op;
-  char            innerType[32];  /* -contact_inner */
-  BoltDualInnerFn inner;
-  PetscInt        maxOuter, maxInner;
-  PetscReal       tolLambda, tolPenetration, tolFriction; /* relative multiplier change; penetration [m]; slip traction change / normal traction */
-  PetscBool       tolPenetrationSet;         /* given as an option (else the law's default) */
-  PetscBool       warmStart;      /* keep the multipliers across outer iterations and steps */
-  PetscBool       closeCycles;    /* anti-cycling (-contact_cycle_close): once the set cycles or is slow to settle, points only close */
-  PetscBool       continueOnFailure;
-  PetscInt        monitor;        /* -contact_monitor: 1 a line per outer iteration, 2 also per CG iteration */
-  PetscBool       keepActiveSet;  /* a static solve keeps the given active set */
-  /* the effective matrix: K + K_c, or a1 M + a4 C + K + K_c */
-  PetscBool       dynamic;
-  PetscReal       massCoef, dampingCoef;
-  Mat             Keff;
-  KSP             ksp;
-  Mat             Kstruct;        /* K + a1 M + a4 C of structStamp's coefficients (op->keepStructural) */
-  PetscReal       structStamp[3]; /* dynamic, massCoef, dampingCoef it was summed with */
-  /* preload calibration: each outer iteration scales to the target clamping force */
-  PetscBool       calibrating;
-  PetscReal       preloadTarget, preloadScale;
-  PetscInt        step;           /* where the loop is, for messages */
-  PetscReal       time;
-  Vec             Fc, work, qp, FcLambda;
-  PetscReal      *tnOpen;         /* per Gauss point: the traction of the opening test */
-  PetscBool       extrapolate;    /* -contact_extrapolate: the strict law's steps start from extrapolated multipliers */
-  PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
-  /* counters and phase times (the paper's Table 2) */
-  PetscInt        factorizations, updates, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
-  PetscReal       tContactStiffness, tDisplacements, tContactForces;
-  PetscReal       lastChange, lastPenetration; /* of the last inner iteration */
-  /* strict law: the worst converged state so far (BoltContactStateComplementarity) */
-  PetscReal       worstPenetration, worstTension, worstCompression, worstProduct;
-};
-
 PetscErrorCode BoltDualCreate(BoltOperator *, BoltDual **);
 PetscErrorCode BoltDualSetFromOptions(BoltDual *);
 PetscErrorCode BoltDualSetUp(BoltDual *);
@@ -456,7 +412,12 @@ PetscErrorCode BoltDualView(BoltDual *, PetscViewer);
 PetscErrorCode BoltDualReleaseSolver(BoltDual *);
 PetscErrorCode BoltDualDestroy(BoltDual **);
 PetscErrorCode BoltDualSetKeepActiveSet(BoltDual *, PetscBool);
-/* contact_monitor.c: diagnostics of the loop (-contact_monitor) */
+PetscErrorCode BoltDualGetEffective(BoltDual *, PetscBool *, PetscReal *, PetscReal *);
+PetscErrorCode BoltDualLogStiffnessUpdate(BoltDual *, PetscLogDouble, PetscBool);
+PetscErrorCode BoltDualGetSolver(BoltDual *, BoltOperator **, KSP *);
+PetscErrorCode BoltDualGetLastConvergence(BoltDual *, PetscReal *, PetscReal *);
+PetscErrorCode BoltDualSummaryWrite(BoltDual *, BoltJSON *, PetscBool);
+/* dual_monitor.c: diagnostics of the loop (-contact_monitor) */
 PetscErrorCode BoltContactMonitorOuter(BoltDual *, PetscInt, PetscInt, PetscInt, PetscBool);
 PetscErrorCode BoltContactMonitorTension(BoltDual *);
 

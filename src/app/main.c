@@ -36,7 +36,11 @@ static PetscErrorCode BoltRunSetUp(BoltRun *r)
   PetscCall(BoltAssemblerSetUp(r->asmb));
   PetscCall(BoltContactSetSetUp(r->contact));
   PetscCall(BoltContactSetCheckSupport(r->contact));
-  PetscCall(MatCreateVecs(r->asmb->K, &r->u, NULL));
+  {
+    Mat K;
+    PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, NULL));
+    PetscCall(MatCreateVecs(K, &r->u, NULL));
+  }
   PetscCall(PetscObjectSetName((PetscObject)r->u, "displacement"));
   PetscCall(BoltLoadSetSetUp(r->loads, r->u));
   PetscCall(BoltContactSetSetUpQuadrature(r->contact, r->u)); /* each model makes its own contact state on it */

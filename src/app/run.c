@@ -59,12 +59,14 @@ PetscErrorCode BoltRunTied(BoltRun *r)
 {
   BoltSummary   *s = &r->sum;
   PetscLogDouble ts, te;
+  Mat            K, M;
 
   PetscFunctionBeginUser;
-  if (r->contact->npairs) PetscCall(BoltContactSetAssembleTied(r->contact, r->asmb->K, &r->Ktied));
+  PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, &M));
+  if (r->contact->npairs) PetscCall(BoltContactSetAssembleTied(r->contact, K, &r->Ktied));
   else {
-    PetscCall(PetscObjectReference((PetscObject)r->asmb->K));
-    r->Ktied = r->asmb->K;
+    PetscCall(PetscObjectReference((PetscObject)K));
+    r->Ktied = K;
   }
   if (r->opt.staticSolve) {
     PetscCall(PetscLogStagePush(boltLog.stageStatic));
@@ -76,11 +78,11 @@ PetscErrorCode BoltRunTied(BoltRun *r)
     PetscCall(PetscLogStagePop());
     PetscCall(PetscPrintf(r->comm, "Static (tied): probe u_%c at '%s' = %.10e m under %g N (%.2f s)\n", "xyz"[r->loads->probeComponent], r->loads->probeGroup, (double)s->probe, (double)r->loads->loadForce, (double)s->tStatic));
   }
-  if (r->opt.exportDir[0]) PetscCall(BoltExportTied(r->opt.exportDir, r->Ktied, r->asmb->M));
+  if (r->opt.exportDir[0]) PetscCall(BoltExportTied(r->opt.exportDir, r->Ktied, M));
   if (r->opt.nev > 0) {
     PetscCall(PetscLogStagePush(boltLog.stageModal));
     PetscCall(PetscTime(&ts));
-    PetscCall(BoltModalSolve(r->Ktied, r->asmb->M, r->opt.nev, "modal_", &s->nconv, s->freq));
+    PetscCall(BoltModalSolve(r->Ktied, M, r->opt.nev, "modal_", &s->nconv, s->freq));
     PetscCall(PetscTime(&te));
     s->tModal = te - ts;
     PetscCall(PetscLogStagePop());
@@ -88,7 +90,7 @@ PetscErrorCode BoltRunTied(BoltRun *r)
     for (PetscInt i = 0; i < s->nconv; i++) PetscCall(PetscPrintf(r->comm, " %.6f", (double)s->freq[i]));
     PetscCall(PetscPrintf(r->comm, " (%.2f s)\n", (double)s->tModal));
   }
-  if (r->opt.verifyFields) PetscCall(BoltVerifyFields(r->mesh, r->Ktied, r->asmb->M, r->u, r->opt.verifyField, &s->x, &s->Kx, &s->Mx));
+  if (r->opt.verifyFields) PetscCall(BoltVerifyFields(r->mesh, r->Ktied, M, r->u, r->opt.verifyField, &s->x, &s->Kx, &s->Mx));
   if (r->opt.checkRigid) PetscCall(BoltCheckRigid(r->asmb, r->u, s->rigid));
   PetscFunctionReturn(0);
 }
@@ -123,8 +125,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltContactStateTractionStats(r->fomOp->state, &s->tractionStats[0], &s->tractionStats[1], &s->tractionStats[2]));
   s->preloadActive      = r->fomOp->state->nactive;
   PetscCall(BoltContactStateCountReclosed(r->fomOp->state, &s->preloadSliding, NULL));
-  s->preloadPenetration = r->fomNm->dual->lastPenetration;
-  s->preloadChange      = r->fomNm->dual->lastChange;
+  PetscCall(BoltDualGetLastConvergence(r->fomNm->dual, &s->preloadPenetration, &s->preloadChange));
   if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, r->fomNm->q, r->fomNm->staticOuter, r->fomNm->staticInner, &r->fomPreload)); /* the ROM's offline phase starts from it */
   PetscCall(PetscLogStagePush(boltLog.stageTransient));
   PetscCall(BoltNewmarkRun(r->fomNm));

@@ -11,33 +11,7 @@ static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, Pets
   PetscCall(BoltJSONInt(j, "steps", nm->nsteps));
   if (full) PetscCall(BoltJSONReal(j, "dt", nm->dt));
   PetscCall(BoltJSONReal(j, "online_s", nm->tOnline));
-  PetscCall(BoltJSONReal(j, "contact_stiffness_s", nm->dual->tContactStiffness));
-  PetscCall(BoltJSONReal(j, "displacements_s", nm->dual->tDisplacements));
-  PetscCall(BoltJSONReal(j, "contact_forces_s", nm->dual->tContactForces));
-  PetscCall(BoltJSONInt(j, "factorizations", nm->dual->factorizations));
-  PetscCall(BoltJSONInt(j, "low_rank_updates", nm->dual->updates));
-  PetscCall(BoltJSONInt(j, "solves", nm->dual->solves));
-  PetscCall(BoltJSONInt(j, "outer_total", nm->dual->outerTotal));
-  PetscCall(BoltJSONInt(j, "inner_total", nm->dual->innerTotal));
-  if (full) {
-    PetscCall(BoltJSONInt(j, "outer_max", nm->dual->outerMax));
-    PetscCall(BoltJSONInt(j, "inner_max", nm->dual->innerMax));
-  }
-  PetscCall(BoltJSONInt(j, "failures", nm->dual->failures));
-  PetscCall(BoltJSONInt(j, "cycles", nm->dual->cycles));
-  if (full && BoltContactStateIsComplementarity(nm->op->state) && nm->op->state->augment) {
-    /* one-sided contact after every converged step of the transient: penetration relative to
-       the shortest contact-face edge, the largest tension of a closed pair and the largest
-       |t.n g.n|, relative to the largest compression (times that edge) */
-    const PetscReal h = nm->op->contact->hMin, tc = nm->dual->worstCompression > 0 ? nm->dual->worstCompression : 1;
-    PetscCall(BoltJSONBeginObject(j, "strict_check"));
-    PetscCall(BoltJSONReal(j, "penetration_over_h", nm->dual->worstPenetration / h));
-    PetscCall(BoltJSONReal(j, "tension_pa", nm->dual->worstTension));
-    PetscCall(BoltJSONReal(j, "compression_pa", nm->dual->worstCompression));
-    PetscCall(BoltJSONReal(j, "tension_rel", nm->dual->worstTension / tc));
-    PetscCall(BoltJSONReal(j, "complementarity_rel", nm->dual->worstProduct / (tc * h)));
-    PetscCall(BoltJSONEndObject(j));
-  }
+  PetscCall(BoltDualSummaryWrite(nm->dual, j, full));
   if (full) {
     PetscInt nsliding, nanchored;
     PetscCall(BoltJSONInt(j, "active_points", nm->op->state->nactive));
@@ -125,9 +99,14 @@ static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIIn
   PetscCall(SummaryNamed(j, "contact_dofs_per_pair", contact->npairs, contact->pairName, contact->contactDofsPerPair, NULL));
   PetscCall(SummaryNamed(j, "contact_elements_per_pair", contact->npairs, contact->pairName, contact->elementsPerPair, NULL));
   PetscCall(SummaryNamed(j, "contact_area_per_pair", contact->npairs, contact->pairName, NULL, contact->areaPerPair));
-  PetscCall(SummaryNamed(j, "elements_per_part", mesh->nparts, mesh->partName, asmb->elementsPerPart, NULL));
-  PetscCall(SummaryNamed(j, "mass_per_part", mesh->nparts, mesh->partName, NULL, asmb->massPerPart));
-  PetscCall(SummaryNamed(j, "volume_per_part", mesh->nparts, mesh->partName, NULL, asmb->volumePerPart));
+  {
+    PetscInt  elements[BOLTROM_MAX_PARTS];
+    PetscReal mass[BOLTROM_MAX_PARTS], volume[BOLTROM_MAX_PARTS];
+    for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltAssemblerGetPart(asmb, p, &mass[p], &volume[p], &elements[p]));
+    PetscCall(SummaryNamed(j, "elements_per_part", mesh->nparts, mesh->partName, elements, NULL));
+    PetscCall(SummaryNamed(j, "mass_per_part", mesh->nparts, mesh->partName, NULL, mass));
+    PetscCall(SummaryNamed(j, "volume_per_part", mesh->nparts, mesh->partName, NULL, volume));
+  }
   PetscCall(BoltJSONBeginObject(j, "material_per_part"));
   for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONString(j, mesh->partName[p], mesh->materials.mat[mesh->partMaterial[p]].name));
   PetscCall(BoltJSONEndObject(j));

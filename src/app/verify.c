@@ -121,10 +121,11 @@ PetscErrorCode BoltVerifyFields(BoltMesh *mesh, Mat K, Mat M, Vec layout, PetscI
    the run checks before its set-up. */
 PetscErrorCode BoltCheckRigid(BoltAssembler *asmb, Vec layout, PetscReal rigid[])
 {
-  BoltMesh *mesh = asmb->mesh;
+  BoltMesh *mesh;
   Vec       x, Kx;
 
   PetscFunctionBeginUser;
+  PetscCall(BoltAssemblerGetMesh(asmb, &mesh));
   PetscCall(VecDuplicate(layout, &x));
   PetscCall(VecDuplicate(layout, &Kx));
   for (PetscInt p = 0; p < mesh->nparts; p++) {

@@ -1,6 +1,6 @@
 /* Linear analyses of an assembled model: static solve and undamped eigenfrequencies, both
    with a MUMPS LU factorisation (defaults set here, overridable through the prefix). */
-#include "boltrom.h"
+#include "private/model.h"
 
 PetscErrorCode BoltStaticSolve(Mat K, Vec f, Vec u, const char prefix[])
 {

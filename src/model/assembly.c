@@ -1,6 +1,6 @@
 /* Assembler: the structural stiffness K and consistent mass M from the hexahedral kernels,
    with the clamped DOFs removed (negative indices are dropped by MatSetValues). */
-#include "boltrom.h"
+#include "private/model.h"
 
 PetscErrorCode BoltAssemblerCreate(BoltMesh *mesh, BoltAssembler **asmb)
 {
@@ -118,6 +118,41 @@ PetscErrorCode BoltAssemblerDamping(BoltAssembler *a, Mat *C)
   PetscCall(MatScale(*C, a->rayleighBeta));
   PetscCall(MatAXPY(*C, a->rayleighAlpha, a->M, SAME_NONZERO_PATTERN));
   PetscCall(PetscObjectSetName((PetscObject)*C, "C"));
+  PetscFunctionReturn(0);
+}
+
+/* The assembled stiffness and mass (referenced by the assembler: not to be destroyed). */
+PetscErrorCode BoltAssemblerGetMatrices(BoltAssembler *a, Mat *K, Mat *M)
+{
+  PetscFunctionBeginUser;
+  if (K) *K = a->K;
+  if (M) *M = a->M;
+  PetscFunctionReturn(0);
+}
+
+/* Rayleigh damping C = alpha M + beta K: its coefficients. */
+PetscErrorCode BoltAssemblerGetRayleigh(BoltAssembler *a, PetscReal *alpha, PetscReal *beta)
+{
+  PetscFunctionBeginUser;
+  *alpha = a->rayleighAlpha;
+  *beta  = a->rayleighBeta;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltAssemblerGetMesh(BoltAssembler *a, BoltMesh **mesh)
+{
+  PetscFunctionBeginUser;
+  *mesh = a->mesh;
+  PetscFunctionReturn(0);
+}
+
+/* Part p's mass [kg], volume [m^3] and number of elements. */
+PetscErrorCode BoltAssemblerGetPart(BoltAssembler *a, PetscInt p, PetscReal *mass, PetscReal *volume, PetscInt *elements)
+{
+  PetscFunctionBeginUser;
+  if (mass) *mass = a->massPerPart[p];
+  if (volume) *volume = a->volumePerPart[p];
+  if (elements) *elements = a->elementsPerPart[p];
   PetscFunctionReturn(0);
 }
 

@@ -1,7 +1,7 @@
 /* Load set: the external load pattern (a force at a point group or spread over a face group),
    the bolt preload (equal and opposite axial forces on two node layers of the stud), and the
    probe where the response is read. */
-#include "boltrom.h"
+#include "private/model.h"
 
 PetscErrorCode BoltLoadSetCreate(BoltMesh *mesh, BoltLoadSet **ls)
 {

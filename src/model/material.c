@@ -1,5 +1,5 @@
 /* Material table: named isotropic elastic materials. Parts refer to them by name. */
-#include "boltrom.h"
+#include "private/model.h"
 
 static PetscErrorCode BoltMaterialAdd(BoltMaterialTable *table, const char name[], PetscReal E, PetscReal nu, PetscReal rho)
 {

@@ -1,6 +1,6 @@
 /* The mesh: a gmsh file read into DMPlex, checked, partitioned and distributed, with the
    parts (volume groups), their materials and the DOF layout (3 per vertex, clamp removed). */
-#include "boltrom.h"
+#include "private/model.h"
 #include <metis.h>
 #include <stdio.h>
 #include <stdlib.h>

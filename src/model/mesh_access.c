@@ -1,7 +1,7 @@
 /* What the other modules ask of the mesh: groups as points or vertices, a face's or a cell's
    vertices and coordinates, the DOFs of a vertex or a cell (-1 where held), keys that name DOFs
    on any partition, and vertex fields. */
-#include "boltrom.h"
+#include "private/model.h"
 #include <metis.h>
 #include <stdio.h>
 #include <stdlib.h>

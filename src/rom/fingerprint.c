@@ -62,19 +62,22 @@ PetscErrorCode BoltROMFingerprintString(BoltROMFingerprint *fp, const char key[]
    penalties per pair, and the Krylov and interface reduction's sizes. */
 PetscErrorCode BoltROMFingerprintScene(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, PetscInt order, PetscReal s0, PetscReal defl, PetscInt nCCM, PetscInt nJIM, BoltROMFingerprint *fp)
 {
-  BoltMesh          *m = asmb->mesh;
+  BoltMesh          *m;
   unsigned long long h;
   char               key[BOLTROM_NAME_LEN + 32], hex[32];
+  PetscReal          alpha, beta;
 
   PetscFunctionBeginUser;
+  PetscCall(BoltAssemblerGetMesh(asmb, &m));
+  PetscCall(BoltAssemblerGetRayleigh(asmb, &alpha, &beta));
   fp->n = 0;
   PetscCall(FileHash(m->comm, m->filename, &h));
   PetscCall(PetscSNPrintf(hex, sizeof(hex), "%016llx", h));
   PetscCall(BoltROMFingerprintInt(fp, "format", BOLT_ROM_FORMAT));
   PetscCall(BoltROMFingerprintString(fp, "mesh_hash", hex));
   PetscCall(BoltROMFingerprintString(fp, "element", m->formulation == HEX8_FULL ? "full" : "incompatible"));
-  PetscCall(BoltROMFingerprintReal(fp, "rayleigh_alpha", asmb->rayleighAlpha));
-  PetscCall(BoltROMFingerprintReal(fp, "rayleigh_beta", asmb->rayleighBeta));
+  PetscCall(BoltROMFingerprintReal(fp, "rayleigh_alpha", alpha));
+  PetscCall(BoltROMFingerprintReal(fp, "rayleigh_beta", beta));
   PetscCall(BoltROMFingerprintInt(fp, "krylov_order", order));
   PetscCall(BoltROMFingerprintReal(fp, "krylov_s0", s0));
   PetscCall(BoltROMFingerprintReal(fp, "krylov_deflation_tol", defl));

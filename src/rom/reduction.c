@@ -213,8 +213,10 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscLogDouble        t1, t2, t3;
   PetscBool             staticShapes       = rom->staticShapes;
   PetscReal             staticPenaltyScale = rom->staticPenaltyScale;
+  Mat                   K, M;
 
   PetscFunctionBeginUser;
+  PetscCall(BoltAssemblerGetMatrices(asmb, &K, &M));
   /* built here: the snapshot modes, and the cone modes in the static solves, read this run's snapshots */
   PetscCheck(o->nSnapshotModes == 0 || o->nFomSnapshots > 1, o->comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's snapshots of the same run: add -fom true -snapshot_every k");
   PetscCall(BoltAssemblerDamping(asmb, &C));
@@ -223,7 +225,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   if (o->nCCM + o->nJIM > 0) {
     /* the contact inputs collapse onto the reduced interface: inputs E_I V_IR, load, preload */
     PetscCall(PetscLogEventBegin(boltLog.interfaceReduction, 0, 0, 0, 0));
-    PetscCall(BoltInterfaceBuild(contact, asmb->M, C, asmb->K, kry->s0, o->nCCM, o->nJIM, kry->deflationTol, &ir));
+    PetscCall(BoltInterfaceBuild(contact, M, C, K, kry->s0, o->nCCM, o->nJIM, kry->deflationTol, &ir));
     PetscCall(PetscLogEventEnd(boltLog.interfaceReduction, 0, 0, 0, 0));
     PetscCall(BVCreate(o->comm, &B));
     PetscCall(BVSetSizesFromVec(B, loads->load, ir->nIR + 2));
@@ -240,7 +242,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscCall(PetscTime(&t1));
   rom->tInterface = t1 - t0;
   PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
-  PetscCall(BoltKrylovBuild(kry, asmb->M, C, asmb->K, B, &V));
+  PetscCall(BoltKrylovBuild(kry, M, C, K, B, &V));
   PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
   PetscCall(BoltInterfaceDestroy(&ir)); /* its factorisations are not needed from here on */
   kry->solve    = NULL;
@@ -282,9 +284,9 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   rom->orthogonality = -1;
   if (o->checkOrthogonality) PetscCall(ROMOrthogonality(rom, V));
   PetscCall(PetscLogEventBegin(boltLog.projection, 0, 0, 0, 0));
-  PetscCall(BoltProject(V, asmb->M, &rom->Mr));
+  PetscCall(BoltProject(V, M, &rom->Mr));
   PetscCall(BoltProject(V, C, &rom->Cr));
-  PetscCall(BoltProject(V, asmb->K, &rom->Kr));
+  PetscCall(BoltProject(V, K, &rom->Kr));
   PetscCall(BoltProjectVec(V, loads->load, &rom->loadr));
   PetscCall(BoltProjectVec(V, loads->loadUnit, &rom->loadUnitr));
   PetscCall(BoltProjectVec(V, preloadCalibrated ? preloadCalibrated : loads->preload, &rom->preloadr));

@@ -268,7 +268,7 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
    the ROM at the contact DOFs and the probe: the paper's central claim in its exact form. */
 PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, PetscReal *err)
 {
-  Mat       A, Ar, Kc, Kcr, C;
+  Mat       A, Ar, Kc, Kcr, C, K, M;
   Vec       q, f, qr;
   KSP       ksp, kspr;
   PetscReal s0 = rom->s0, num[2] = {0, 0}, den[2] = {0, 0}, pf, pr;
@@ -290,9 +290,10 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(BoltContactStateSetPenaltyScale(sFull, rom->penaltyScale, rom->bandScale));
   PetscCall(BoltContactStateStiffness(sFull, &Kc));
   PetscCall(BoltAssemblerDamping(asmb, &C));
-  PetscCall(MatDuplicate(asmb->K, MAT_COPY_VALUES, &A));
+  PetscCall(BoltAssemblerGetMatrices(asmb, &K, &M));
+  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &A));
   PetscCall(MatAXPY(A, s0, C, SAME_NONZERO_PATTERN));
-  PetscCall(MatAXPY(A, s0 * s0, asmb->M, SAME_NONZERO_PATTERN));
+  PetscCall(MatAXPY(A, s0 * s0, M, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(A, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
   PetscCall(VecDuplicate(loads->load, &q));
   f = loads->load;

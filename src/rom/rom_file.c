@@ -147,7 +147,7 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
 PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet *loads, const char file[])
 {
   MPI_Comm     comm = rom->comm;
-  BoltMesh    *m    = asmb->mesh;
+  BoltMesh    *m;
   PetscViewer  v;
   PetscMPIInt  rank;
   char         tmp[PETSC_MAX_PATH_LEN], groups[256] = "";
@@ -156,6 +156,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   const char  *candidates[] = {"load_point", "corner_point", loads->loadGroup, loads->probeGroup};
 
   PetscFunctionBeginUser;
+  PetscCall(BoltAssemblerGetMesh(asmb, &m));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp", file));
   PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));

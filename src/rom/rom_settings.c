@@ -64,8 +64,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
 
   PetscFunctionBeginUser;
   rom->contact     = contact;
-  rom->rayleigh[0] = asmb->rayleighAlpha; /* C_r = V' C V (a ROM file holds the same: its fingerprint has them) */
-  rom->rayleigh[1] = asmb->rayleighBeta;
+  PetscCall(BoltAssemblerGetRayleigh(asmb, &rom->rayleigh[0], &rom->rayleigh[1])); /* C_r = V' C V (a ROM file holds the same: its fingerprint has them) */
   /* With interface reduction the ROM has fewer DOFs than contact constraints: multipliers that
      close every active gap are not unique (their signs, which decide the active set, are
      arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps

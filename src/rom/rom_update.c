@@ -103,9 +103,7 @@ static PetscErrorCode ROMReferenceMake(BoltROM *rom, BoltOperator *op, BoltDual 
   for (PetscInt i = 0; i < 4 * ne; i++) ref->slotOf[i] = -1;
   ref->nslot       = 0;
   ref->valid       = PETSC_TRUE;
-  ref->dynamic     = d->dynamic;
-  ref->massCoef    = d->massCoef;
-  ref->dampingCoef = d->dampingCoef;
+  PetscCall(BoltDualGetEffective(d, &ref->dynamic, &ref->massCoef, &ref->dampingCoef));
   ref->lastUsed    = u->clock++;
   u->cur           = r;
   u->k             = 0;
@@ -306,9 +304,14 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
   PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
   u->dual = d;
   /* references made under other Newmark coefficients (the static preload, another step) go */
-  for (PetscInt r = 0; r < ROM_REFERENCES; r++) {
-    ROMReference *ref = &u->ref[r];
-    if (ref->valid && !(ref->dynamic == d->dynamic && ref->massCoef == d->massCoef && ref->dampingCoef == d->dampingCoef)) ref->valid = PETSC_FALSE;
+  {
+    PetscBool dynamic;
+    PetscReal massCoef, dampingCoef;
+    PetscCall(BoltDualGetEffective(d, &dynamic, &massCoef, &dampingCoef));
+    for (PetscInt r = 0; r < ROM_REFERENCES; r++) {
+      ROMReference *ref = &u->ref[r];
+      if (ref->valid && !(ref->dynamic == dynamic && ref->massCoef == massCoef && ref->dampingCoef == dampingCoef)) ref->valid = PETSC_FALSE;
+    }
   }
   /* the changed elements' blocks, and whom they differ from */
   for (PetscInt e = 0; e < c->nelem; e++) {
@@ -354,15 +357,14 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
     if (done) {
       PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
       PetscCall(PetscTime(&t1));
-      d->tContactStiffness += t1 - t0;
-      d->updates++;
+      PetscCall(BoltDualLogStiffnessUpdate(d, t1 - t0, PETSC_TRUE));
       u->updates++;
       PetscFunctionReturn(0);
     }
   }
   PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
-  d->tContactStiffness += t1 - t0;
+  PetscCall(BoltDualLogStiffnessUpdate(d, t1 - t0, PETSC_FALSE));
   PetscCall(ROMReferenceNew(rom, op, d));
   PetscFunctionReturn(0);
 }

@@ -12,10 +12,11 @@
    overwritten. */
 static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBase, Vec w0, PetscReal nforce, PetscInt n, const char what[], Vec work, Vec rhs, Vec q, Vec out[])
 {
-  BoltOperator *op = dual->op;
+  BoltOperator *op;
   PetscInt      nout, nin;
 
   PetscFunctionBeginUser;
+  PetscCall(BoltDualGetSolver(dual, &op, NULL));
   for (PetscInt k = 0; k < n; k++) {
     PetscReal nf;
     PetscCall(MatMult(M, k ? out[k - 1] : w0, work));
@@ -82,8 +83,7 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
   PetscFunctionBeginUser;
   if (shared) { /* the FOM of this run solved it */
     PetscCall(BoltPreloadStateApply(shared, op, q));
-    outer = shared->outer;
-    inner = shared->inner;
+    PetscCall(BoltPreloadStateGetIterations(shared, &outer, &inner));
   } else {
     /* as the FOM's time integrator would solve it (newmark.c): the same two scene options, on an
        operator of its own whose state is then handed over as the FOM's would be (a state that
@@ -184,7 +184,7 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
     PetscCall(VecCopy(q, q2));
     PetscCall(PetscMalloc1(nOpenKrylov, &openK));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
-    PetscCall(BoltStaticKrylov(dual, asmb->M, base, q2, response, 1e-3 * npre, nOpenKrylov, "opened-joint", work, rhs, q, openK));
+    PetscCall(BoltStaticKrylov(dual, op->M, base, q2, response, 1e-3 * npre, nOpenKrylov, "opened-joint", work, rhs, q, openK));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_FALSE));
     PetscCall(VecDestroy(&base));
     PetscCall(VecDestroy(&q2));
@@ -240,6 +240,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
   BoltContactState *s     = op->state;
   Vec              *extra = *extrap, *all;
   PetscInt          nout, nin, ncone = 0;
+  KSP               ksp;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(*nextra + 3 * npairs + 2 * nConePairs + nOpenKrylov, &all));
@@ -251,11 +252,12 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     PetscCall(BoltDualSolveStatic(dual, op->preload, q, 0, &nout, &nin));
   }
+  PetscCall(BoltDualGetSolver(dual, NULL, &ksp)); /* factored by the last solve */
   for (PetscInt i = 0; i < npairs; i++)
     for (PetscInt d = 0; d < 3; d++) {
       PetscCall(BoltNodePairVector(pairs[2 * i], pairs[2 * i + 1], d, rhs));
       PetscCall(VecDuplicate(q, &extra[*nextra]));
-      PetscCall(KSPSolve(dual->ksp, rhs, extra[*nextra]));
+      PetscCall(KSPSolve(ksp, rhs, extra[*nextra]));
       (*nextra)++;
     }
   if (rom->coneModes > 0) /* compressed: the responses to the training run's patterns at the cone pairs, per direction */
@@ -266,7 +268,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
       for (PetscInt l = 0; l < k; l++) {
         PetscCall(BoltNodePairsCombination(nConePairs, conePairs, coneDirs + 3 * j, 6, &patterns[nConePairs * l], rhs));
         PetscCall(VecDuplicate(q, &extra[*nextra]));
-        PetscCall(KSPSolve(dual->ksp, rhs, extra[*nextra]));
+        PetscCall(KSPSolve(ksp, rhs, extra[*nextra]));
         (*nextra)++;
         ncone++;
       }
@@ -277,7 +279,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
       for (PetscInt j = rom->coneTraction ? 0 : 1; j < 2; j++) {
         PetscCall(BoltNodePairVectorAlong(conePairs[2 * i], conePairs[2 * i + 1], &coneDirs[6 * i + 3 * j], rhs));
         PetscCall(VecDuplicate(q, &extra[*nextra]));
-        PetscCall(KSPSolve(dual->ksp, rhs, extra[*nextra]));
+        PetscCall(KSPSolve(ksp, rhs, extra[*nextra]));
         (*nextra)++;
         ncone++;
       }
@@ -365,7 +367,7 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
       PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     }
     /* op->load, this solve's own copy, is the forcing of each vector in turn */
-    PetscCall(BoltStaticKrylov(dual, asmb->M, op->preload, extra[0], extra[1], nforce, nClosed, "closed-contact", op->load, rhs, q, &extra[2]));
+    PetscCall(BoltStaticKrylov(dual, op->M, op->preload, extra[0], extra[1], nforce, nClosed, "closed-contact", op->load, rhs, q, &extra[2]));
   }
   *nextra = 2 + nClosed;
   /* Each opening shape is the preloaded joint's static response to a unit force pair on one of

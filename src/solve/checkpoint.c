@@ -10,7 +10,7 @@
    - history: the step counters and timings, then the probe, energy, slipping-pair, friction
      dissipation, energy accounting, pair-force and snapshot-time histories.
    A restart may use other ranks: every rank reads the keyed data and picks its own rows. */
-#include "boltrom.h"
+#include "private/solve.h"
 #include <petscviewerhdf5.h>
 #include <ctype.h>
 

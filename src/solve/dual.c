@@ -361,6 +361,45 @@ PetscErrorCode BoltDualSetKeepActiveSet(BoltDual *d, PetscBool keep)
   PetscFunctionReturn(0);
 }
 
+/* The effective matrix's coefficients: whether it is a time step's, and its mass and damping
+   factors (K + massCoef M + dampingCoef C). */
+PetscErrorCode BoltDualGetEffective(BoltDual *d, PetscBool *dynamic, PetscReal *massCoef, PetscReal *dampingCoef)
+{
+  PetscFunctionBeginUser;
+  *dynamic     = d->dynamic;
+  *massCoef    = d->massCoef;
+  *dampingCoef = d->dampingCoef;
+  PetscFunctionReturn(0);
+}
+
+/* Time spent updating the factorisation to a new contact stiffness by the operator's own means
+   (a low-rank update counts as one update). */
+PetscErrorCode BoltDualLogStiffnessUpdate(BoltDual *d, PetscLogDouble seconds, PetscBool update)
+{
+  PetscFunctionBeginUser;
+  d->tContactStiffness += seconds;
+  if (update) d->updates++;
+  PetscFunctionReturn(0);
+}
+
+/* The operator and the solver of its factorised effective matrix (both the loop's). */
+PetscErrorCode BoltDualGetSolver(BoltDual *d, BoltOperator **op, KSP *ksp)
+{
+  PetscFunctionBeginUser;
+  if (op) *op = d->op;
+  if (ksp) *ksp = d->ksp;
+  PetscFunctionReturn(0);
+}
+
+/* The last solve's largest penetration [m] and relative change of the multipliers. */
+PetscErrorCode BoltDualGetLastConvergence(BoltDual *d, PetscReal *penetration, PetscReal *change)
+{
+  PetscFunctionBeginUser;
+  *penetration = d->lastPenetration;
+  *change      = d->lastChange;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltDualDestroy(BoltDual **dp)
 {
   BoltDual *d = *dp;

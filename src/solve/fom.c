@@ -1,6 +1,6 @@
 /* The full-order operator: the assembled M, C, K, the load vectors, and the contact DOFs
    reached through one scatter. Its contact law is the scene's (-contact_law, -contact_augment). */
-#include "boltrom.h"
+#include "private/solve.h"
 
 typedef struct {
   BoltLoadSet *loads;
@@ -101,19 +101,25 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
 {
   BoltOperator *op;
   BoltFOMCtx   *ctx;
+  BoltMesh     *mesh;
+  Mat           K, M;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltOperatorCreate(asmb->mesh->comm, "FOM", contact, &op));
+  PetscCall(BoltAssemblerGetMesh(asmb, &mesh));
+  PetscCall(BoltAssemblerGetMatrices(asmb, &K, &M));
+  PetscCall(BoltOperatorCreate(mesh->comm, "FOM", contact, &op));
   PetscCall(PetscNew(&ctx));
   ctx->loads           = loads;
   op->solverType       = MATSOLVERMUMPS;
   op->exactConstraints = PETSC_TRUE;
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
-  PetscCall(BoltOperatorSetSystem(op, asmb->M, NULL, asmb->K, loads->load, loads->preload));
+  PetscCall(BoltOperatorSetSystem(op, M, NULL, K, loads->load, loads->preload));
   if (transient) {
-    Mat C;
+    Mat       C;
+    PetscReal alpha, beta;
     PetscCall(BoltAssemblerDamping(asmb, &C));
-    PetscCall(BoltOperatorSetDamping(op, C, asmb->rayleighAlpha, asmb->rayleighBeta));
+    PetscCall(BoltAssemblerGetRayleigh(asmb, &alpha, &beta));
+    PetscCall(BoltOperatorSetDamping(op, C, alpha, beta));
     PetscCall(MatDestroy(&C));
   }
   op->ctx                      = ctx;

@@ -1,7 +1,7 @@
 /* Newmark time integration, written once against BoltOperator so that the full and the reduced
    model run literally the same code: the static preloaded start, then the time steps, each one
    a solve of the dual contact loop (BoltDual, dual.c) on the effective system. */
-#include "boltrom.h"
+#include "private/solve.h"
 
 PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
 {

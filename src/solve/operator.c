@@ -1,6 +1,6 @@
 /* BoltOperator: what the dual loop and the time integrator see of a model (fom.c, rom.c fill in
    the ops table), with its own contact state; and the preloaded state one model hands another. */
-#include "boltrom.h"
+#include "private/solve.h"
 
 /* An operator with a fresh contact state over the shared geometry; the model fills in the rest. */
 PetscErrorCode BoltOperatorCreate(MPI_Comm comm, const char name[], BoltContactSet *contact, BoltOperator **opp)
@@ -114,6 +114,15 @@ PetscErrorCode BoltPreloadStateApply(const BoltPreloadState *st, BoltOperator *o
   PetscCall(PetscArraycpy(s->lambda, st->lambda, 12 * op->contact->nelem));
   PetscCall(BoltContactStateSetActive(s, st->active, st->released));
   BoltContactStateSetAnchors(s, st->anchor);
+  PetscFunctionReturn(0);
+}
+
+/* The outer and inner iterations of the solve that found the state. */
+PetscErrorCode BoltPreloadStateGetIterations(const BoltPreloadState *st, PetscReal *outer, PetscReal *inner)
+{
+  PetscFunctionBeginUser;
+  *outer = st->outer;
+  *inner = st->inner;
   PetscFunctionReturn(0);
 }
 

@@ -1,7 +1,7 @@
 /* Diagnostics of the dual contact loop (-contact_monitor): which points open and close in each
    outer iteration, where, and the tension the multipliers carry before the active set is
    updated. They print; they change nothing. */
-#include "boltrom.h"
+#include "private/solve.h"
 
 /* Diagnostics of one outer iteration: points opened / closed per pair, the distance from the
    pair's centroid (the bolt axis for the joint) of the points that changed, and the largest
