@@ -17,15 +17,17 @@
 typedef struct _n_BoltJSON BoltJSON;
 
 /* ------------------------------------------------------------------ log_events.c */
-typedef struct {
-  PetscLogEvent meshRead, meshDistribute, assembly, contactSetUp, contactAssembly, loads;
-  PetscLogEvent factorization, staticSolve, modalSolve, output;
-  PetscLogEvent contactStiffness, displacements, contactForces; /* the paper's Table 2 phases */
-  PetscLogEvent contactUpdate;                                  /* the state's augmentation and decisions */
-  PetscLogEvent basis, projection, krylovFactor, krylovSolve, krylovOrth, interfaceReduction;
-  PetscLogStage stageSetUp, stageStatic, stageModal, stageOutput, stagePreload, stageTransient;
-} BoltLog;
-extern BoltLog boltLog;
+/* Every -log_view event and stage of boltrom (the paper's Table 2 phases: CONTACT_STIFFNESS,
+   DISPLACEMENTS, CONTACT_FORCES), registered once by BoltLogRegister */
+extern PetscLogEvent BOLT_EVENT_MESH_READ, BOLT_EVENT_MESH_DISTRIBUTE, BOLT_EVENT_ASSEMBLY,
+                     BOLT_EVENT_CONTACT_SET_UP, BOLT_EVENT_CONTACT_ASSEMBLY, BOLT_EVENT_LOADS,
+                     BOLT_EVENT_FACTORIZATION, BOLT_EVENT_STATIC_SOLVE, BOLT_EVENT_MODAL_SOLVE,
+                     BOLT_EVENT_OUTPUT, BOLT_EVENT_CONTACT_STIFFNESS, BOLT_EVENT_DISPLACEMENTS,
+                     BOLT_EVENT_CONTACT_FORCES, BOLT_EVENT_CONTACT_UPDATE, BOLT_EVENT_BASIS,
+                     BOLT_EVENT_PROJECTION, BOLT_EVENT_KRYLOV_FACTOR, BOLT_EVENT_KRYLOV_SOLVE,
+                     BOLT_EVENT_KRYLOV_ORTH, BOLT_EVENT_INTERFACE_REDUCTION;
+extern PetscLogStage BOLT_STAGE_SET_UP, BOLT_STAGE_STATIC, BOLT_STAGE_MODAL, BOLT_STAGE_OUTPUT,
+                     BOLT_STAGE_PRELOAD, BOLT_STAGE_TRANSIENT;
 PetscErrorCode BoltLogRegister(void);
 PetscErrorCode BoltMemoryPrint(MPI_Comm, const char[]);
 PetscErrorCode BoltMemoryRelease(void);

@@ -92,7 +92,7 @@ static PetscErrorCode BoltRunMain(void)
   PetscCall(BoltLogRegister());
   PetscCall(PetscTime(&t0));
   PetscCall(BoltRunOptionsSetFromOptions(r.comm, &r.opt));
-  PetscCall(PetscLogStagePush(boltLog.stageSetUp));
+  PetscCall(PetscLogStagePush(BOLT_STAGE_SET_UP));
   PetscCall(BoltRunConfigure(&r, checkpointBase));
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (help && !r.mesh->filename[0]) { /* -help alone: the options are listed (above); stop */
@@ -116,7 +116,7 @@ static PetscErrorCode BoltRunMain(void)
   if (r.opt.rom) PetscCall(BoltRunROM(&r));
   PetscCall(BoltOptionsCheckUnused(r.comm, BOLT_OPTIONS_FINAL)); /* the safety net, before anything is written */
 
-  PetscCall(PetscLogStagePush(boltLog.stageOutput));
+  PetscCall(PetscLogStagePush(BOLT_STAGE_OUTPUT));
   if (r.opt.writeOutput) PetscCall(BoltSummaryWriteFields(&r.sum, r.opt.outputDir, r.opt.outputName));
   if (r.opt.summary[0]) PetscCall(BoltSummaryWrite(r.comm, r.opt.summary, &r.sum));
   PetscCall(PetscLogStagePop());

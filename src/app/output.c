@@ -21,7 +21,7 @@ PetscErrorCode BoltOutputOpen(BoltMesh *m, const char dir[], const char name[], 
   const PetscScalar *x;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
   PetscCall(PetscMemzero(out, sizeof(*out)));
   out->comm = m->comm;
   PetscCall(PetscStrncpy(out->dir, dir, sizeof(out->dir)));
@@ -113,7 +113,7 @@ PetscErrorCode BoltOutputOpen(BoltMesh *m, const char dir[], const char name[], 
   PetscCall(VecDestroy(&geom));
   PetscCall(VecDestroy(&part));
   PetscCall(VecDestroy(&vpart));
-  PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -148,7 +148,7 @@ static PetscErrorCode BoltOutputVertexValues(BoltOutput *out, BoltMesh *m, Vec u
 
   PetscFunctionBeginUser;
   PetscCheck(out->nfields < 16, m->comm, PETSC_ERR_SUP, "Too many output fields");
-  PetscCall(PetscLogEventBegin(boltLog.output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
   PetscCall(DMPlexGetVertexNumbering(m->dm, &vnumIS));
   PetscCall(ISGetIndices(vnumIS, &vnum));
   for (PetscInt v = m->vStart; v < m->vEnd; v++)
@@ -183,7 +183,7 @@ static PetscErrorCode BoltOutputVertexValues(BoltOutput *out, BoltMesh *m, Vec u
   PetscCall(PetscStrncpy(out->field[out->nfields], name, BOLTROM_NAME_LEN));
   out->fieldComponents[out->nfields] = bs;
   out->fieldOnCells[out->nfields++]  = PETSC_FALSE;
-  PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -374,7 +374,7 @@ PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
   PetscCall(PetscViewerDestroy(&out->viewer));
   PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
   if (rank == 0) {
@@ -392,6 +392,6 @@ PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
     }
   }
   for (PetscInt k = 0; k < out->nseries; k++) PetscCall(PetscFree(out->series[k].time));
-  PetscCall(PetscLogEventEnd(boltLog.output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -69,7 +69,7 @@ PetscErrorCode BoltRunTied(BoltRun *r)
     r->Ktied = K;
   }
   if (r->opt.staticSolve) {
-    PetscCall(PetscLogStagePush(boltLog.stageStatic));
+    PetscCall(PetscLogStagePush(BOLT_STAGE_STATIC));
     PetscCall(PetscTime(&ts));
     PetscCall(BoltStaticSolve(r->Ktied, r->loads->load, r->u, "static_"));
     PetscCall(PetscTime(&te));
@@ -80,7 +80,7 @@ PetscErrorCode BoltRunTied(BoltRun *r)
   }
   if (r->opt.exportDir[0]) PetscCall(BoltExportTied(r->opt.exportDir, r->Ktied, M));
   if (r->opt.nev > 0) {
-    PetscCall(PetscLogStagePush(boltLog.stageModal));
+    PetscCall(PetscLogStagePush(BOLT_STAGE_MODAL));
     PetscCall(PetscTime(&ts));
     PetscCall(BoltModalSolve(r->Ktied, M, r->opt.nev, "modal_", &s->nconv, s->freq));
     PetscCall(PetscTime(&te));
@@ -104,7 +104,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscFunctionBeginUser;
   PetscCall(BoltFOMCreate(r->asmb, contact, r->loads, PETSC_TRUE, &r->fomOp));
   PetscCall(BoltRunNewmarkCreate(r, r->fomOp, &r->fomNm));
-  PetscCall(PetscLogStagePush(boltLog.stagePreload));
+  PetscCall(PetscLogStagePush(BOLT_STAGE_PRELOAD));
   PetscCall(BoltNewmarkPreload(r->fomNm));
   PetscCall(PetscLogStagePop());
   PetscCall(BoltContactStateNormalForcePerPair(r->fomOp->state, s->preloadForce));
@@ -127,7 +127,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltContactStateCountReclosed(r->fomOp->state, &s->preloadSliding, NULL));
   PetscCall(BoltDualGetLastConvergence(r->fomNm->dual, &s->preloadPenetration, &s->preloadChange));
   if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, r->fomNm->q, r->fomNm->staticOuter, r->fomNm->staticInner, &r->fomPreload)); /* the ROM's offline phase starts from it */
-  PetscCall(PetscLogStagePush(boltLog.stageTransient));
+  PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));
   PetscCall(BoltNewmarkRun(r->fomNm));
   PetscCall(PetscLogStagePop());
   PetscCall(BoltNewmarkView(r->fomNm, PETSC_VIEWER_STDOUT_(r->comm)));
@@ -157,10 +157,10 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   if (r->opt.exportDir[0]) PetscCall(BoltExportReduced(r->opt.exportDir, r->rom, r->romOp));
   PetscCall(BoltRunNewmarkCreate(r, r->romOp, &r->romNm));
   PetscCall(BoltROMSetPreloadState(r->rom, r->romNm, r->loads->preloadForce));
-  PetscCall(PetscLogStagePush(boltLog.stagePreload));
+  PetscCall(PetscLogStagePush(BOLT_STAGE_PRELOAD));
   PetscCall(BoltNewmarkPreload(r->romNm));
   PetscCall(PetscLogStagePop());
-  PetscCall(PetscLogStagePush(boltLog.stageTransient));
+  PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));
   PetscCall(BoltNewmarkRun(r->romNm));
   PetscCall(PetscLogStagePop());
   PetscCall(BoltNewmarkView(r->romNm, PETSC_VIEWER_STDOUT_(r->comm)));

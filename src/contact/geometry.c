@@ -263,7 +263,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
   PetscReal hContact = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.contactSetUp, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_SET_UP, 0, 0, 0, 0));
   PetscCall(BoltContactFindPairs(c));
   PetscCall(PetscMalloc1(cap, &c->elem));
   c->nelem       = 0;
@@ -380,7 +380,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
      (the gap times the structure's stiffness per area) is pascals */
   c->gapTolerance = 1e-9 * (c->npairs ? c->hMin : 1.0);
   if (c->activationGap < 0) c->activationGap = c->gapTolerance;
-  PetscCall(PetscLogEventEnd(boltLog.contactSetUp, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_SET_UP, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -261,7 +261,7 @@ PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
   Mat               Kc;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.contactAssembly, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_ASSEMBLY, 0, 0, 0, 0));
   PetscCall(BoltContactStateCreate(c, &s)); /* every point active */
   PetscCall(BoltContactStateStiffness(s, &Kc));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Ktied));
@@ -269,7 +269,7 @@ PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
   PetscCall(MatSetOption(*Ktied, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(PetscObjectSetName((PetscObject)*Ktied, "K_tied"));
   PetscCall(BoltContactStateDestroy(&s));
-  PetscCall(PetscLogEventEnd(boltLog.contactAssembly, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_ASSEMBLY, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

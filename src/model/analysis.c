@@ -9,18 +9,18 @@ PetscErrorCode BoltStaticSolve(Mat K, Vec f, Vec u, const char prefix[])
   PetscReal          norm;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.staticSolve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_STATIC_SOLVE, 0, 0, 0, 0));
   /* a failed solve does not raise an error (KSP's default): the check below names its cause */
   PetscCall(BoltDirectSolverCreate(PetscObjectComm((PetscObject)K), prefix, K, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
-  PetscCall(PetscLogEventBegin(boltLog.factorization, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   PetscCall(KSPSetUp(ksp));
-  PetscCall(PetscLogEventEnd(boltLog.factorization, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   PetscCall(KSPSolve(ksp, f, u));
   PetscCall(KSPGetConvergedReason(ksp, &reason));
   PetscCall(VecNorm(u, NORM_2, &norm));
   PetscCheck(reason >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)K), PETSC_ERR_NOT_CONVERGED, "Static solve failed (%s, |u| = %g): the stiffness matrix is singular, i.e. some part is not held; check the clamp group and the contact pairs", KSPConvergedReasons[reason], (double)norm);
   PetscCall(KSPDestroy(&ksp));
-  PetscCall(PetscLogEventEnd(boltLog.staticSolve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_STATIC_SOLVE, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -64,7 +64,7 @@ PetscErrorCode BoltModalSolve(Mat K, Mat M, PetscInt nev, const char prefix[], P
   EPS eps;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.modalSolve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_MODAL_SOLVE, 0, 0, 0, 0));
   PetscCall(EPSCreate(PetscObjectComm((PetscObject)K), &eps));
   PetscCall(EPSSetOptionsPrefix(eps, prefix));
   PetscCall(EPSSetOperators(eps, K, M));
@@ -79,6 +79,6 @@ PetscErrorCode BoltModalSolve(Mat K, Mat M, PetscInt nev, const char prefix[], P
     freq[i] = PetscSqrtReal(PetscMax(PetscRealPart(kr), 0.0)) / (2 * PETSC_PI);
   }
   PetscCall(EPSDestroy(&eps));
-  PetscCall(PetscLogEventEnd(boltLog.modalSolve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_MODAL_SOLVE, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -83,7 +83,7 @@ PetscErrorCode BoltAssemblerSetUp(BoltAssembler *a)
   BoltMesh *m = a->mesh;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.assembly, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_ASSEMBLY, 0, 0, 0, 0));
   PetscCall(DMCreateMatrix(m->dm, &a->K));
   PetscCall(DMCreateMatrix(m->dm, &a->M));
   PetscCall(PetscObjectSetName((PetscObject)a->K, "K"));
@@ -97,7 +97,7 @@ PetscErrorCode BoltAssemblerSetUp(BoltAssembler *a)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, a->volumePerPart, (PetscMPIInt)m->nparts, MPIU_REAL, MPI_SUM, m->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, a->massPerPart, (PetscMPIInt)m->nparts, MPIU_REAL, MPI_SUM, m->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, a->elementsPerPart, (PetscMPIInt)m->nparts, MPIU_INT, MPI_SUM, m->comm));
-  PetscCall(PetscLogEventEnd(boltLog.assembly, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_ASSEMBLY, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

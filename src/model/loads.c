@@ -111,7 +111,7 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
   PetscInt  n, hasFaces = 0, nv, *verts, nfaces, *faces;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.loads, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_LOADS, 0, 0, 0, 0));
   PetscCall(VecDuplicate(layout, &l->load));
   PetscCall(VecDuplicate(layout, &l->preload));
   PetscCall(VecZeroEntries(l->load));
@@ -187,7 +187,7 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
   PetscCall(PetscFree(verts));
   /* a point group's vertex is owned by one rank: the others contribute zeros */
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, l->probeCoord, 3, MPIU_REAL, MPI_SUM, m->comm));
-  PetscCall(PetscLogEventEnd(boltLog.loads, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_LOADS, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -193,7 +193,7 @@ static PetscErrorCode BoltMeshDistribute(BoltMesh *m, DM *dm)
     for (PetscInt p = pStart; p < pEnd; p++) m->pointOriginal[p - pStart] = p;
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscLogEventBegin(boltLog.meshDistribute, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_MESH_DISTRIBUTE, 0, 0, 0, 0));
   PetscCall(PetscStrcmp(m->partitioner, "metis", &metis));
   PetscCall(DMPlexCreatePartitionerGraph(*dm, 0, &nv, &xadj, &adj, &globalNumbering));
   PetscCall(PetscMalloc1(nv + 1, &owner));
@@ -287,7 +287,7 @@ static PetscErrorCode BoltMeshDistribute(BoltMesh *m, DM *dm)
   PetscCall(PetscFree(xadj));
   PetscCall(PetscFree(adj));
   PetscCall(ISDestroy(&globalNumbering));
-  PetscCall(PetscLogEventEnd(boltLog.meshDistribute, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_MESH_DISTRIBUTE, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -361,7 +361,7 @@ PetscErrorCode BoltMeshSetUp(BoltMesh *m)
   if (!has) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "1"));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_mark_vertices", &has));
   if (!has) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "1"));
-  PetscCall(PetscLogEventBegin(boltLog.meshRead, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_MESH_READ, 0, 0, 0, 0));
   {
     /* a file that exists but cannot be read (truncated, not MSH): say which, not just where */
     PetscErrorCode ierr;
@@ -375,7 +375,7 @@ PetscErrorCode BoltMeshSetUp(BoltMesh *m)
       SETERRQ(m->comm, PETSC_ERR_FILE_UNEXPECTED, "Cannot read the mesh %s (%s): is it a complete gmsh MSH 4.1 file? Regenerate it (scripts/mesh-joint) or export it again from gmsh", m->filename, specific && specific[0] ? specific : text);
     }
   }
-  PetscCall(PetscLogEventEnd(boltLog.meshRead, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_MESH_READ, 0, 0, 0, 0));
   PetscCall(PetscObjectSetName((PetscObject)dm, "boltrom"));
   {
     PetscInt dim;

@@ -75,7 +75,7 @@ static PetscErrorCode KrylovAppend(BV U, PetscInt *r, BV W, PetscInt nw, PetscRe
   Vec       w;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.krylovOrth, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_KRYLOV_ORTH, 0, 0, 0, 0));
   PetscCall(BVSetActiveColumns(W, 0, nw));
   for (j = 0; j < nw; j++) {
     PetscCall(BVNormColumn(W, j, NORM_2, &nrm0[j]));
@@ -107,7 +107,7 @@ static PetscErrorCode KrylovAppend(BV U, PetscInt *r, BV W, PetscInt nw, PetscRe
   PetscCall(PetscInfo(W, "Krylov append: %" PetscInt_FMT " of %" PetscInt_FMT " columns kept, smallest kept norm ratio %g\n", k, nw, (double)minRatio));
   *r += k;
   if (nkept) *nkept = k;
-  PetscCall(PetscLogEventEnd(boltLog.krylovOrth, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_KRYLOV_ORTH, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

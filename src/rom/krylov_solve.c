@@ -62,7 +62,7 @@ PetscErrorCode KrylovSolve(BoltKrylov *kr, Mat F, BV Rhs, BV Sol, PetscInt nc)
   Mat A, X;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.krylovSolve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_KRYLOV_SOLVE, 0, 0, 0, 0));
   if (kr->solve) PetscCall(kr->solve(kr->solveCtx, Rhs, Sol, nc));
   else {
     PetscCall(BVSetActiveColumns(Rhs, 0, nc));
@@ -74,7 +74,7 @@ PetscErrorCode KrylovSolve(BoltKrylov *kr, Mat F, BV Rhs, BV Sol, PetscInt nc)
     PetscCall(BVRestoreMat(Rhs, &A));
   }
   kr->nsolves += nc;
-  PetscCall(PetscLogEventEnd(boltLog.krylovSolve, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_KRYLOV_SOLVE, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -90,7 +90,7 @@ PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt, KSP *k
   PetscReal      s0 = kr->s0, t0, t1;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.krylovFactor, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_KRYLOV_FACTOR, 0, 0, 0, 0));
   PetscCall(PetscTime(&t0));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Kt));
   PetscCall(KrylovPattern(K, C, &strC));
@@ -117,6 +117,6 @@ PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt, KSP *k
   PetscCheck(!failed, comm, PETSC_ERR_USER_INPUT, "Factorization of Kt = K + s0 C + s0^2 M failed (s0 = %g rad/s): Kt is singular, i.e. s0 = 0 on an unheld model; change -krylov_s0 or check the clamp", (double)s0);
   PetscCall(PetscTime(&t1));
   kr->tFactor = t1 - t0;
-  PetscCall(PetscLogEventEnd(boltLog.krylovFactor, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_KRYLOV_FACTOR, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

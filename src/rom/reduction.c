@@ -224,9 +224,9 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   rom->nJIM = o->nJIM;
   if (o->nCCM + o->nJIM > 0) {
     /* the contact inputs collapse onto the reduced interface: inputs E_I V_IR, load, preload */
-    PetscCall(PetscLogEventBegin(boltLog.interfaceReduction, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(BOLT_EVENT_INTERFACE_REDUCTION, 0, 0, 0, 0));
     PetscCall(BoltInterfaceBuild(contact, M, C, K, kry->s0, o->nCCM, o->nJIM, kry->deflationTol, &ir));
-    PetscCall(PetscLogEventEnd(boltLog.interfaceReduction, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(BOLT_EVENT_INTERFACE_REDUCTION, 0, 0, 0, 0));
     PetscCall(BVCreate(o->comm, &B));
     PetscCall(BVSetSizesFromVec(B, loads->load, ir->nIR + 2));
     PetscCall(BVSetFromOptions(B));
@@ -241,9 +241,9 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   } else PetscCall(BoltInputMatrix(contact, loads, loads->load, &B, &rom->ninputs));
   PetscCall(PetscTime(&t1));
   rom->tInterface = t1 - t0;
-  PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_BASIS, 0, 0, 0, 0));
   PetscCall(BoltKrylovBuild(kry, M, C, K, B, &V));
-  PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_BASIS, 0, 0, 0, 0));
   PetscCall(BoltInterfaceDestroy(&ir)); /* its factorisations are not needed from here on */
   kry->solve    = NULL;
   kry->solveCtx = NULL;
@@ -256,7 +256,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   if (staticShapes) {
     Vec     *extra;
     PetscInt added, nextra;
-    PetscCall(PetscLogEventBegin(boltLog.basis, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(BOLT_EVENT_BASIS, 0, 0, 0, 0));
     PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->closedKeepActive, rom->openingScale, rom->nOpenKrylov, o->fomPreload, o->nFomSnapshots, o->fomSnapshots, &nextra, &extra, &preloadCalibrated));
     PetscCall(BoltMemoryPrint(o->comm, "the preloaded state's static solves"));
     PetscCall(BoltAssemblerDamping(asmb, &C));
@@ -268,7 +268,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
       PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
       PetscCall(VecDestroy(&preloadCalibrated));
     }
-    PetscCall(PetscLogEventEnd(boltLog.basis, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(BOLT_EVENT_BASIS, 0, 0, 0, 0));
   }
   if (o->nSnapshotModes > 0) {
     Vec     *modes;
@@ -283,7 +283,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;
   if (o->checkOrthogonality) PetscCall(ROMOrthogonality(rom, V));
-  PetscCall(PetscLogEventBegin(boltLog.projection, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_PROJECTION, 0, 0, 0, 0));
   PetscCall(BoltProject(V, M, &rom->Mr));
   PetscCall(BoltProject(V, C, &rom->Cr));
   PetscCall(BoltProject(V, K, &rom->Kr));
@@ -292,7 +292,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscCall(BoltProjectVec(V, preloadCalibrated ? preloadCalibrated : loads->preload, &rom->preloadr));
   PetscCall(VecDestroy(&preloadCalibrated));
   PetscCall(BoltROMExtractRows(rom, V, loads));
-  PetscCall(PetscLogEventEnd(boltLog.projection, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_PROJECTION, 0, 0, 0, 0));
   PetscCall(PetscTime(&t3));
   rom->order = kry->order;
   rom->s0    = kry->s0;

@@ -301,7 +301,7 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
-  PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_STIFFNESS, 0, 0, 0, 0));
   u->dual = d;
   /* references made under other Newmark coefficients (the static preload, another step) go */
   {
@@ -355,14 +355,14 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
     PetscBool done;
     PetscCall(ROMReferenceCorrect(rom, order[i], &done));
     if (done) {
-      PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
+      PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_STIFFNESS, 0, 0, 0, 0));
       PetscCall(PetscTime(&t1));
       PetscCall(BoltDualLogStiffnessUpdate(d, t1 - t0, PETSC_TRUE));
       u->updates++;
       PetscFunctionReturn(0);
     }
   }
-  PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_STIFFNESS, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   PetscCall(BoltDualLogStiffnessUpdate(d, t1 - t0, PETSC_FALSE));
   PetscCall(ROMReferenceNew(rom, op, d));

@@ -11,11 +11,11 @@ static PetscErrorCode BoltDualUpdateActive(BoltDual *d, PetscInt *nchanged, Pets
   BoltOperator *op = d->op;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
   if (op->ops.openTraction) PetscCall(op->ops.openTraction(op, d->tnOpen));
   else PetscCall(BoltContactStateOpenTraction(op->state, d->tnOpen));
   PetscCall(BoltContactStateUpdateActive(op->state, d->tnOpen, nchanged, cycling));
-  PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -196,9 +196,9 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     PetscCall(BoltDualGapsOf(d, q, s->gap));
     BoltContactStateAnchorGaps(s, s->gap);
     solves++;
-    PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
     PetscCall(BoltContactStateAugment(s, &rel, &viol));
-    PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(viol), comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", op->name, d->step, (double)d->time);
     d->lastChange      = rel;
     d->lastPenetration = viol;

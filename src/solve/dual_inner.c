@@ -28,9 +28,9 @@ static PetscErrorCode BoltDualInnerUzawa(BoltDual *d, Vec rhs0, Vec q, PetscInt 
     PetscCall(BoltDualSolveWithForces(d, rhs0, BoltContactStateForceMultipliers(s), q));
     PetscCall(BoltDualGapsOf(d, q, s->gap));
     BoltContactStateAnchorGaps(s, s->gap);
-    PetscCall(PetscLogEventBegin(boltLog.contactUpdate, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
     PetscCall(BoltContactStateAugment(s, &rel, &pen));
-    PetscCall(PetscLogEventEnd(boltLog.contactUpdate, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
     d->lastChange      = rel;
     d->lastPenetration = pen;
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(pen), d->op->comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", d->op->name, d->step, (double)d->time);

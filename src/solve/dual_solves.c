@@ -38,7 +38,7 @@ PetscErrorCode BoltDualFactorInto(BoltDual *d, Mat A, KSP ksp)
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
-  PetscCall(PetscLogEventBegin(boltLog.contactStiffness, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_STIFFNESS, 0, 0, 0, 0));
   PetscCall(op->ops.contactStiffness(op, &Kc));
   if (op->keepStructural) {
     /* the structural part summed once per set of Newmark coefficients, by the same calls in the
@@ -52,13 +52,13 @@ PetscErrorCode BoltDualFactorInto(BoltDual *d, Mat A, KSP ksp)
     PetscCall(MatCopy(d->Kstruct, A, SAME_NONZERO_PATTERN));
   } else PetscCall(BoltDualSumStructural(d, A)); /* (a FOM-sized copy is not kept: at 562k DOFs memory is the limit) */
   PetscCall(MatAXPY(A, 1.0, Kc, SUBSET_NONZERO_PATTERN));
-  PetscCall(PetscLogEventEnd(boltLog.contactStiffness, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_STIFFNESS, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   d->tContactStiffness += t1 - t0;
-  PetscCall(PetscLogEventBegin(boltLog.factorization, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   PetscCall(KSPSetOperators(ksp, A, A));
   PetscCall(KSPSetUp(ksp));
-  PetscCall(PetscLogEventEnd(boltLog.factorization, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   {
     PC             pc;
     PCFailedReason reason;
@@ -90,16 +90,16 @@ PetscErrorCode BoltDualSolveWithForces(BoltDual *d, Vec rhs0, const PetscReal la
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
-  PetscCall(PetscLogEventBegin(boltLog.contactForces, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_FORCES, 0, 0, 0, 0));
   PetscCall(op->ops.contactForces(op, lambda, d->Fc));
   if (rhs0) PetscCall(VecWAXPY(d->work, -1.0, d->Fc, rhs0));
   else PetscCall(VecCopy(d->Fc, d->work));
-  PetscCall(PetscLogEventEnd(boltLog.contactForces, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_FORCES, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
-  PetscCall(PetscLogEventBegin(boltLog.displacements, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_DISPLACEMENTS, 0, 0, 0, 0));
   if (op->ops.solve) PetscCall(op->ops.solve(op, d, d->work, q));
   else PetscCall(KSPSolve(d->ksp, d->work, q));
-  PetscCall(PetscLogEventEnd(boltLog.displacements, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_DISPLACEMENTS, 0, 0, 0, 0));
   PetscCall(PetscTime(&t2));
   d->solves++;
   d->tContactForces += t1 - t0;
@@ -114,13 +114,13 @@ PetscErrorCode BoltDualGapsOf(BoltDual *d, Vec q, PetscReal gap[])
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
-  PetscCall(PetscLogEventBegin(boltLog.contactForces, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_FORCES, 0, 0, 0, 0));
   if (op->ops.contactGaps) PetscCall(op->ops.contactGaps(op, q, gap));
   else {
     PetscCall(op->ops.contactDisplacements(op, q));
     PetscCall(BoltContactSetGapsOf(op->contact, gap));
   }
-  PetscCall(PetscLogEventEnd(boltLog.contactForces, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_FORCES, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   d->tContactForces += t1 - t0;
   PetscFunctionReturn(0);

@@ -5,7 +5,15 @@
 #endif
 #include "boltrom.h"
 
-BoltLog boltLog;
+PetscLogEvent BOLT_EVENT_MESH_READ, BOLT_EVENT_MESH_DISTRIBUTE, BOLT_EVENT_ASSEMBLY,
+              BOLT_EVENT_CONTACT_SET_UP, BOLT_EVENT_CONTACT_ASSEMBLY, BOLT_EVENT_LOADS,
+              BOLT_EVENT_FACTORIZATION, BOLT_EVENT_STATIC_SOLVE, BOLT_EVENT_MODAL_SOLVE,
+              BOLT_EVENT_OUTPUT, BOLT_EVENT_CONTACT_STIFFNESS, BOLT_EVENT_DISPLACEMENTS,
+              BOLT_EVENT_CONTACT_FORCES, BOLT_EVENT_CONTACT_UPDATE, BOLT_EVENT_BASIS,
+              BOLT_EVENT_PROJECTION, BOLT_EVENT_KRYLOV_FACTOR, BOLT_EVENT_KRYLOV_SOLVE,
+              BOLT_EVENT_KRYLOV_ORTH, BOLT_EVENT_INTERFACE_REDUCTION;
+PetscLogStage BOLT_STAGE_SET_UP, BOLT_STAGE_STATIC, BOLT_STAGE_MODAL, BOLT_STAGE_OUTPUT,
+              BOLT_STAGE_PRELOAD, BOLT_STAGE_TRANSIENT;
 
 PetscErrorCode BoltLogRegister(void)
 {
@@ -16,32 +24,32 @@ PetscErrorCode BoltLogRegister(void)
   if (registered) PetscFunctionReturn(0);
   registered = PETSC_TRUE;
   PetscCall(PetscClassIdRegister("boltrom", &classid));
-  PetscCall(PetscLogEventRegister("BoltMeshRead", classid, &boltLog.meshRead));
-  PetscCall(PetscLogEventRegister("BoltMeshDistrib", classid, &boltLog.meshDistribute));
-  PetscCall(PetscLogEventRegister("BoltAssembly", classid, &boltLog.assembly));
-  PetscCall(PetscLogEventRegister("BoltContactSetUp", classid, &boltLog.contactSetUp));
-  PetscCall(PetscLogEventRegister("BoltContactAsm", classid, &boltLog.contactAssembly));
-  PetscCall(PetscLogEventRegister("BoltLoads", classid, &boltLog.loads));
-  PetscCall(PetscLogEventRegister("BoltFactor", classid, &boltLog.factorization));
-  PetscCall(PetscLogEventRegister("BoltStaticSolve", classid, &boltLog.staticSolve));
-  PetscCall(PetscLogEventRegister("BoltModalSolve", classid, &boltLog.modalSolve));
-  PetscCall(PetscLogEventRegister("BoltOutput", classid, &boltLog.output));
-  PetscCall(PetscLogEventRegister("ContactStiffness", classid, &boltLog.contactStiffness));
-  PetscCall(PetscLogEventRegister("Displacements", classid, &boltLog.displacements));
-  PetscCall(PetscLogEventRegister("ContactForces", classid, &boltLog.contactForces));
-  PetscCall(PetscLogEventRegister("ContactUpdate", classid, &boltLog.contactUpdate));
-  PetscCall(PetscLogEventRegister("RomBasis", classid, &boltLog.basis));
-  PetscCall(PetscLogEventRegister("RomProjection", classid, &boltLog.projection));
-  PetscCall(PetscLogEventRegister("KrylovFactor", classid, &boltLog.krylovFactor));
-  PetscCall(PetscLogEventRegister("KrylovSolve", classid, &boltLog.krylovSolve));
-  PetscCall(PetscLogEventRegister("KrylovOrthog", classid, &boltLog.krylovOrth));
-  PetscCall(PetscLogEventRegister("InterfaceReduce", classid, &boltLog.interfaceReduction));
-  PetscCall(PetscLogStageRegister("Model set-up", &boltLog.stageSetUp));
-  PetscCall(PetscLogStageRegister("Preload", &boltLog.stagePreload));
-  PetscCall(PetscLogStageRegister("Transient", &boltLog.stageTransient));
-  PetscCall(PetscLogStageRegister("Static solve", &boltLog.stageStatic));
-  PetscCall(PetscLogStageRegister("Modal solve", &boltLog.stageModal));
-  PetscCall(PetscLogStageRegister("Output", &boltLog.stageOutput));
+  PetscCall(PetscLogEventRegister("BoltMeshRead", classid, &BOLT_EVENT_MESH_READ));
+  PetscCall(PetscLogEventRegister("BoltMeshDistrib", classid, &BOLT_EVENT_MESH_DISTRIBUTE));
+  PetscCall(PetscLogEventRegister("BoltAssembly", classid, &BOLT_EVENT_ASSEMBLY));
+  PetscCall(PetscLogEventRegister("BoltContactSetUp", classid, &BOLT_EVENT_CONTACT_SET_UP));
+  PetscCall(PetscLogEventRegister("BoltContactAsm", classid, &BOLT_EVENT_CONTACT_ASSEMBLY));
+  PetscCall(PetscLogEventRegister("BoltLoads", classid, &BOLT_EVENT_LOADS));
+  PetscCall(PetscLogEventRegister("BoltFactor", classid, &BOLT_EVENT_FACTORIZATION));
+  PetscCall(PetscLogEventRegister("BoltStaticSolve", classid, &BOLT_EVENT_STATIC_SOLVE));
+  PetscCall(PetscLogEventRegister("BoltModalSolve", classid, &BOLT_EVENT_MODAL_SOLVE));
+  PetscCall(PetscLogEventRegister("BoltOutput", classid, &BOLT_EVENT_OUTPUT));
+  PetscCall(PetscLogEventRegister("ContactStiffness", classid, &BOLT_EVENT_CONTACT_STIFFNESS));
+  PetscCall(PetscLogEventRegister("Displacements", classid, &BOLT_EVENT_DISPLACEMENTS));
+  PetscCall(PetscLogEventRegister("ContactForces", classid, &BOLT_EVENT_CONTACT_FORCES));
+  PetscCall(PetscLogEventRegister("ContactUpdate", classid, &BOLT_EVENT_CONTACT_UPDATE));
+  PetscCall(PetscLogEventRegister("RomBasis", classid, &BOLT_EVENT_BASIS));
+  PetscCall(PetscLogEventRegister("RomProjection", classid, &BOLT_EVENT_PROJECTION));
+  PetscCall(PetscLogEventRegister("KrylovFactor", classid, &BOLT_EVENT_KRYLOV_FACTOR));
+  PetscCall(PetscLogEventRegister("KrylovSolve", classid, &BOLT_EVENT_KRYLOV_SOLVE));
+  PetscCall(PetscLogEventRegister("KrylovOrthog", classid, &BOLT_EVENT_KRYLOV_ORTH));
+  PetscCall(PetscLogEventRegister("InterfaceReduce", classid, &BOLT_EVENT_INTERFACE_REDUCTION));
+  PetscCall(PetscLogStageRegister("Model set-up", &BOLT_STAGE_SET_UP));
+  PetscCall(PetscLogStageRegister("Preload", &BOLT_STAGE_PRELOAD));
+  PetscCall(PetscLogStageRegister("Transient", &BOLT_STAGE_TRANSIENT));
+  PetscCall(PetscLogStageRegister("Static solve", &BOLT_STAGE_STATIC));
+  PetscCall(PetscLogStageRegister("Modal solve", &BOLT_STAGE_MODAL));
+  PetscCall(PetscLogStageRegister("Output", &BOLT_STAGE_OUTPUT));
   PetscFunctionReturn(0);
 }
 
