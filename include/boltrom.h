@@ -487,17 +487,16 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
 
 /* ------------------------------------------------------------------ exact_sum.c */
 /* n sums over ranks that give the same bits on any partition (two fixed grids per term) */
-typedef struct {
-  PetscInt   n, nalloc;
-  PetscReal  sigma[2];
-  PetscReal *acc; /* 2 n: the exact partial sums of the two grids */
-} BoltExactSum;
+typedef struct _n_BoltExactSum BoltExactSum;
 PetscErrorCode BoltExactSumBegin(BoltExactSum *, PetscInt, PetscReal, PetscInt);
 void           BoltExactSumAdd(BoltExactSum *, const PetscReal[]);
 void           BoltExactSumAddParts(BoltExactSum *, const PetscReal[], PetscReal[], PetscReal[]);
 void           BoltExactSumReplaceParts(BoltExactSum *, const PetscReal[], PetscReal[], PetscReal[]);
 PetscErrorCode BoltExactSumEnd(BoltExactSum *, MPI_Comm, PetscReal[]);
-PetscErrorCode BoltExactSumDestroy(BoltExactSum *);
+PetscErrorCode BoltExactSumCreate(BoltExactSum **);
+PetscErrorCode BoltExactSumGetPartials(BoltExactSum *, PetscReal[]);
+PetscErrorCode BoltExactSumSetPartials(BoltExactSum *, const PetscReal[]);
+PetscErrorCode BoltExactSumDestroy(BoltExactSum **);
 
 /* ------------------------------------------------------------------ gather.c */
 PetscErrorCode BoltGatherAll(MPI_Comm, MPI_Datatype, const void *, PetscInt, void *, PetscInt *, PetscInt *, PetscInt *);

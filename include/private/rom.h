@@ -110,7 +110,7 @@ struct _n_BoltROM {
   PetscInt       *dirtyElems;        /* per local contact element: scratch of the K_cr update */
   PetscReal      *kcrSend, *kcrRecv, *kcrDT; /* scratch of the node-pair K_cr update, kept between updates */
   PetscInt        kcrSendAlloc, kcrRecvAlloc, kcrDTAlloc; /* (a fresh megabyte-sized buffer per update spent its time in page faults) */
-  BoltExactSum    sum;               /* the reductions over ranks, partition-independent */
+  BoltExactSum   *sum;               /* the reductions over ranks, partition-independent */
   /* what the online phase keeps while the contact state's version holds (BoltContactState) */
   PetscScalar    *Fr;                /* n: the reduced forces of the state's multipliers */
   PetscObjectState FrVersion, KcrVersion, tnVersion;

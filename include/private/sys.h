@@ -10,4 +10,10 @@ struct _n_BoltJSON {
   PetscBool first[16];
 };
 
+struct _n_BoltExactSum {
+  PetscInt   n, nalloc;
+  PetscReal  sigma[2];
+  PetscReal *acc; /* 2 n: the exact partial sums of the two grids */
+};
+
 #endif

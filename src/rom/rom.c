@@ -176,6 +176,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltContactStateSetPenaltyScale(op->state, rom->penaltyScale, rom->bandScale));
 /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
+  if (!rom->sum) PetscCall(BoltExactSumCreate(&rom->sum));
   PetscCall(MatZeroEntries(rom->Kcr));
   rom->KcrValid = rom->FrValid = rom->tnValid = PETSC_FALSE; /* a new state: its versions start afresh */
   PetscCall(PetscFree(rom->Ke));

@@ -202,21 +202,21 @@ static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal 
     rom->fPartsValid = PETSC_FALSE;
   }
   fresh = (PetscBool)!rom->fPartsValid;
-  PetscCall(BoltExactSumBegin(&rom->sum, n, rom->fGridBound, rom->npGlobal));
-  if (!fresh) PetscCall(PetscArraycpy(rom->sum.acc, rom->fAcc, 2 * n));
+  PetscCall(BoltExactSumBegin(rom->sum, n, rom->fGridBound, rom->npGlobal));
+  if (!fresh) PetscCall(BoltExactSumSetPartials(rom->sum, rom->fAcc));
   for (PetscInt k = 0; k < rom->npOwned; k++) {
     const PetscReal *f    = &rom->npF[3 * k];
     PetscReal       *fsum = &rom->npFSum[3 * k], *p = &rom->fParts[2 * n * k];
     if (!fresh && f[0] == fsum[0] && f[1] == fsum[1] && f[2] == fsum[2]) continue;
     ROMPairForceTerm(rom, k, g);
-    if (fresh) BoltExactSumAddParts(&rom->sum, g, p, p + n);
-    else BoltExactSumReplaceParts(&rom->sum, g, p, p + n);
+    if (fresh) BoltExactSumAddParts(rom->sum, g, p, p + n);
+    else BoltExactSumReplaceParts(rom->sum, g, p, p + n);
     PetscCall(PetscArraycpy(fsum, f, 3));
   }
-  PetscCall(PetscArraycpy(rom->fAcc, rom->sum.acc, 2 * n));
+  PetscCall(BoltExactSumGetPartials(rom->sum, rom->fAcc));
   rom->fPartsValid = PETSC_TRUE;
   PetscCall(VecGetArray(F, &y));
-  PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
+  PetscCall(BoltExactSumEnd(rom->sum, rom->comm, y));
   PetscCall(PetscArraycpy(rom->Fr, y, n));
   PetscCall(VecRestoreArray(F, &y));
   rom->FrVersion = op->state->version;
@@ -251,13 +251,13 @@ PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec 
     PetscFunctionReturn(0);
   }
   PetscCall(ROMPairForces(rom, lambda, &bound));
-  PetscCall(BoltExactSumBegin(&rom->sum, n, bound, rom->npGlobal));
+  PetscCall(BoltExactSumBegin(rom->sum, n, bound, rom->npGlobal));
   for (PetscInt k = 0; k < rom->npOwned && bound > 0; k++) {
     ROMPairForceTerm(rom, k, g);
-    BoltExactSumAdd(&rom->sum, g);
+    BoltExactSumAdd(rom->sum, g);
   }
   PetscCall(VecGetArray(F, &y));
-  PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, y));
+  PetscCall(BoltExactSumEnd(rom->sum, rom->comm, y));
   if (own) {
     PetscCall(PetscArraycpy(rom->Fr, y, n));
     rom->FrVersion = op->state->version;

@@ -182,16 +182,16 @@ PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
     PetscBLASInt bn, b12 = 12;
     PetscScalar  one = 1.0, zero = 0.0, *packed = rom->packed;
     PetscCall(PetscBLASIntCast(n, &bn));
-    PetscCall(BoltExactSumBegin(&rom->sum, n * (n + 1) / 2, bound, c->ngpGlobal / 4));
+    PetscCall(BoltExactSumBegin(rom->sum, n * (n + 1) / 2, bound, c->ngpGlobal / 4));
     for (PetscInt i = 0; i < ndirty; i++) {
       PetscScalar *d = &delta[144 * i], *D = &rom->De[12 * n * dirty[i]];
       PetscCallBLAS("BLASgemm", BLASgemm_("N", "N", &b12, &bn, &b12, &one, d, &b12, D, &b12, &zero, T, &b12));
       PetscCallBLAS("BLASgemm", BLASgemm_("T", "N", &bn, &bn, &b12, &one, D, &b12, T, &b12, &zero, dK, &bn));
       for (PetscInt l = 0, k = 0; l < n; l++)
         for (PetscInt j = 0; j <= l; j++) packed[k++] = dK[j + n * l];
-      BoltExactSumAdd(&rom->sum, packed);
+      BoltExactSumAdd(rom->sum, packed);
     }
-    PetscCall(BoltExactSumEnd(&rom->sum, rom->comm, packed));
+    PetscCall(BoltExactSumEnd(rom->sum, rom->comm, packed));
     PetscCall(ROMAddPackedToKcr(rom, packed));
   }
   rom->KcrVersion = s->version;

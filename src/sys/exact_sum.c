@@ -6,7 +6,7 @@
    so the result is accurate to some 80 bits of the bound: more than a plain double sum, and the
    same bits on any partition. The reduced model needs it: its effective matrix, under a
    near-hard contact penalty, lifts the last bit of a reduced force to 1e-7 of the response. */
-#include "boltrom.h"
+#include "private/sys.h"
 
 /* Grids for terms bounded by |x| <= bound (global) with at most nterms of them (global). */
 PetscErrorCode BoltExactSumBegin(BoltExactSum *s, PetscInt n, PetscReal bound, PetscInt nterms)
@@ -104,10 +104,34 @@ PetscErrorCode BoltExactSumEnd(BoltExactSum *s, MPI_Comm comm, PetscReal out[])
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltExactSumDestroy(BoltExactSum *s)
+/* This rank's exact partial sums (2 n: the two grids'), to keep them between sums that change a
+   few terms (Set puts kept ones back after Begin). */
+PetscErrorCode BoltExactSumGetPartials(BoltExactSum *s, PetscReal acc[])
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree(s->acc));
-  s->nalloc = s->n = 0;
+  PetscCall(PetscArraycpy(acc, s->acc, 2 * s->n));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltExactSumSetPartials(BoltExactSum *s, const PetscReal acc[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscArraycpy(s->acc, acc, 2 * s->n));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltExactSumCreate(BoltExactSum **s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltExactSumDestroy(BoltExactSum **s)
+{
+  PetscFunctionBeginUser;
+  if (!*s) PetscFunctionReturn(0);
+  PetscCall(PetscFree((*s)->acc));
+  PetscCall(PetscFree(*s));
   PetscFunctionReturn(0);
 }

@@ -18,7 +18,7 @@ int main(int argc, char **argv)
 {
   const PetscInt nterms = 4000, n = 5;
   PetscMPIInt    rank, size;
-  BoltExactSum   sum = {0};
+  BoltExactSum  *sum;
   PetscReal      bound = 0, all[5], split[5], x[5];
   PetscInt       nfail = 0;
 
@@ -26,23 +26,24 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(BoltExactSumCreate(&sum));
   for (PetscInt i = 0; i < nterms; i++)
     for (PetscInt j = 0; j < n; j++) bound = PetscMax(bound, PetscAbsReal(Term(i, j)));
   /* every term on one rank, in order */
-  PetscCall(BoltExactSumBegin(&sum, n, bound, nterms));
+  PetscCall(BoltExactSumBegin(sum, n, bound, nterms));
   for (PetscInt i = 0; i < nterms; i++) {
     for (PetscInt j = 0; j < n; j++) x[j] = Term(i, j);
-    BoltExactSumAdd(&sum, x);
+    BoltExactSumAdd(sum, x);
   }
-  PetscCall(BoltExactSumEnd(&sum, PETSC_COMM_SELF, all));
+  PetscCall(BoltExactSumEnd(sum, PETSC_COMM_SELF, all));
   /* round-robin over the ranks, each in reverse order */
-  PetscCall(BoltExactSumBegin(&sum, n, bound, nterms));
+  PetscCall(BoltExactSumBegin(sum, n, bound, nterms));
   for (PetscInt i = nterms - 1; i >= 0; i--) {
     if (i % size != rank) continue;
     for (PetscInt j = 0; j < n; j++) x[j] = Term(i, j);
-    BoltExactSumAdd(&sum, x);
+    BoltExactSumAdd(sum, x);
   }
-  PetscCall(BoltExactSumEnd(&sum, PETSC_COMM_WORLD, split));
+  PetscCall(BoltExactSumEnd(sum, PETSC_COMM_WORLD, split));
   {
     PetscReal worst = 0, diff = 0, plainWorst = 0;
     for (PetscInt j = 0; j < n; j++) {
@@ -67,32 +68,32 @@ int main(int argc, char **argv)
   {
     PetscReal *parts, fresh[5], replaced[5], diff = 0;
     PetscCall(PetscMalloc1(2 * n * nterms, &parts));
-    PetscCall(BoltExactSumBegin(&sum, n, bound, nterms));
+    PetscCall(BoltExactSumBegin(sum, n, bound, nterms));
     for (PetscInt i = 0; i < nterms; i++) {
       if (i % size != rank) continue;
       for (PetscInt j = 0; j < n; j++) x[j] = Term(i, j);
-      BoltExactSumAddParts(&sum, x, &parts[2 * n * i], &parts[2 * n * i + n]);
+      BoltExactSumAddParts(sum, x, &parts[2 * n * i], &parts[2 * n * i + n]);
     }
     for (PetscInt i = nterms - 1; i >= 0; i--) {
       if (i % size != rank || i % 3 || i + 1 == nterms) continue;
       for (PetscInt j = 0; j < n; j++) x[j] = Term(i + 1, j);
-      BoltExactSumReplaceParts(&sum, x, &parts[2 * n * i], &parts[2 * n * i + n]);
+      BoltExactSumReplaceParts(sum, x, &parts[2 * n * i], &parts[2 * n * i + n]);
     }
-    PetscCall(BoltExactSumEnd(&sum, PETSC_COMM_WORLD, replaced));
-    PetscCall(BoltExactSumBegin(&sum, n, bound, nterms));
+    PetscCall(BoltExactSumEnd(sum, PETSC_COMM_WORLD, replaced));
+    PetscCall(BoltExactSumBegin(sum, n, bound, nterms));
     for (PetscInt i = 0; i < nterms; i++) {
       for (PetscInt j = 0; j < n; j++) x[j] = Term(i % 3 || i + 1 == nterms ? i : i + 1, j);
-      BoltExactSumAdd(&sum, x);
+      BoltExactSumAdd(sum, x);
     }
-    PetscCall(BoltExactSumEnd(&sum, PETSC_COMM_SELF, fresh));
+    PetscCall(BoltExactSumEnd(sum, PETSC_COMM_SELF, fresh));
     for (PetscInt j = 0; j < n; j++) diff = PetscMax(diff, PetscAbsReal(replaced[j] - fresh[j]) / bound);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s replaced_terms_same_bits_as_fresh %.6e\n", diff == 0 && replaced[0] != all[0] ? "PASS" : "FAIL", (double)diff));
     if (!(diff == 0 && replaced[0] != all[0])) nfail++;
     PetscCall(PetscFree(parts));
   }
   /* a zero bound (no terms) gives zero sums */
-  PetscCall(BoltExactSumBegin(&sum, n, 0.0, nterms));
-  PetscCall(BoltExactSumEnd(&sum, PETSC_COMM_WORLD, split));
+  PetscCall(BoltExactSumBegin(sum, n, 0.0, nterms));
+  PetscCall(BoltExactSumEnd(sum, PETSC_COMM_WORLD, split));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s zero_bound %.6e\n", split[0] == 0 && split[n - 1] == 0 ? "PASS" : "FAIL", (double)split[0]));
   if (!(split[0] == 0 && split[n - 1] == 0)) nfail++;
   PetscCall(BoltExactSumDestroy(&sum));
