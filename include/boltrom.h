@@ -592,12 +592,11 @@ PetscErrorCode BoltHDF5WriteValues(PetscViewer, MPI_Comm, const char[], PetscInt
 PetscErrorCode BoltHDF5WriteVecs(PetscViewer, MPI_Comm, PetscInt, const char *const[], Vec[], PetscBool);
 PetscErrorCode BoltReadAll(PetscViewer, MPI_Comm, const char[], PetscInt *, PetscReal **);
 /* Sorted keys of a keyed dataset and the permutation to their rows. */
-typedef struct {
-  PetscInt  n, *key, *row;
-} BoltKeyIndex;
-PetscErrorCode BoltKeyIndexCreate(PetscInt, const PetscReal[], BoltKeyIndex *);
+typedef struct _n_BoltKeyIndex BoltKeyIndex;
+PetscErrorCode BoltKeyIndexCreate(PetscInt, const PetscReal[], BoltKeyIndex **);
+PetscInt       BoltKeyIndexSize(const BoltKeyIndex *);
 PetscErrorCode BoltKeyIndexFind(BoltKeyIndex *, PetscInt, PetscInt *);
-PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *);
+PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex **);
 /* Attributes of the root group "/" of an open HDF5 viewer's file (collective, same values on every rank) */
 PetscErrorCode BoltHDF5AttributeString(PetscViewer, const char[], const char[]);
 PetscErrorCode BoltHDF5AttributeStrings(PetscViewer, const char[], PetscInt, const char *const[]);

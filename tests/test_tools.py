@@ -1,5 +1,6 @@
 """The Python tools and scripts: each takes --help (exits 0, prints its usage, writes nothing), and
 python/plot_history.py labels its axis with the probe the result file says it holds."""
+import os
 import subprocess
 from pathlib import Path
 
@@ -31,11 +32,12 @@ TOOLS = tools()
 
 
 def new_help_files(before):
-    """Files in the repository (untracked or ignored) with 'help' in their name, not in before."""
-    # GIT_OPTIONAL_LOCKS=0: only read, never take the index lock that a concurrent commit needs
-    out = subprocess.run(["git", "status", "--porcelain", "--ignored", "--untracked-files=all"], cwd=ROOT,
-                         env=dict(ENV, GIT_OPTIONAL_LOCKS="0"), capture_output=True, text=True, check=True).stdout
-    now = {line[3:] for line in out.splitlines() if line[:2] in ("??", "!!") and "help" in Path(line[3:]).name.lower()}
+    """Files in the repository's tree with 'help' in their name, not in before (a walk of the
+    tree: it also holds in a copy that is not a git checkout)."""
+    now = set()
+    for folder, dirs, files in os.walk(ROOT):
+        dirs[:] = [d for d in dirs if d != ".git"]
+        now |= {os.path.relpath(os.path.join(folder, f), ROOT) for f in files if "help" in f.lower()}
     return now - (before or set())
 
 

@@ -16,4 +16,8 @@ struct _n_BoltExactSum {
   PetscReal *acc; /* 2 n: the exact partial sums of the two grids */
 };
 
+struct _n_BoltKeyIndex {
+  PetscInt  n, *key, *row;
+};
+
 #endif

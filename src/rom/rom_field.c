@@ -106,7 +106,7 @@ static PetscErrorCode BoltROMBasisRows(BoltMesh *mesh, Vec layout, Vec fk, const
 {
   Vec                ck, all;
   VecScatter         sc;
-  BoltKeyIndex       ix;
+  BoltKeyIndex      *ix;
   const PetscScalar *a;
   PetscReal         *keys;
   PetscInt           N, nl;
@@ -126,7 +126,7 @@ static PetscErrorCode BoltROMBasisRows(BoltMesh *mesh, Vec layout, Vec fk, const
   PetscCall(PetscMalloc1(nl + 1, rows));
   PetscCall(VecGetArrayRead(fk, &a));
   for (PetscInt i = 0; i < nl; i++) {
-    PetscCall(BoltKeyIndexFind(&ix, (PetscInt)PetscRealPart(a[i]), &(*rows)[i]));
+    PetscCall(BoltKeyIndexFind(ix, (PetscInt)PetscRealPart(a[i]), &(*rows)[i]));
     PetscCheck((*rows)[i] >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s: its basis has a DOF this mesh has not: rebuild the ROM", file);
   }
   PetscCall(VecRestoreArrayRead(fk, &a));

@@ -114,20 +114,20 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
 {
   PetscInt     n;
   PetscReal   *keys, *x;
-  BoltKeyIndex ix;
+  BoltKeyIndex *ix;
 
   PetscFunctionBeginUser;
   PetscCall(BoltReadAll(v, rom->comm, "state_keys", &n, &keys));
   PetscCall(BoltKeyIndexCreate(n, keys, &ix));
   PetscCall(PetscFree(keys));
   PetscCall(BoltReadAll(v, rom->comm, "state", &n, &x));
-  PetscCheck(n == BOLT_ROM_STATE * ix.n, rom->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged (preloaded state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements): rebuild it with -rom_rebuild", file, n, ix.n);
+  PetscCheck(n == BOLT_ROM_STATE * BoltKeyIndexSize(ix), rom->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged (preloaded state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements): rebuild it with -rom_rebuild", file, n, BoltKeyIndexSize(ix));
   PetscCall(PetscMalloc4(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0, 4 * c->nelem + 1, &rom->released0));
   PetscCall(PetscFree(rom->marked));
   PetscCall(PetscMalloc1(4 * c->nelem + 1, &rom->marked));
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscInt row;
-    PetscCall(BoltKeyIndexFind(&ix, c->elem[e].key, &row));
+    PetscCall(BoltKeyIndexFind(ix, c->elem[e].key, &row));
     PetscCheck(row >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for contact element %" PetscInt_FMT ": rebuild it with -rom_rebuild", file, c->elem[e].key);
     for (PetscInt i = 0; i < 12; i++) rom->lambda0[12 * e + i] = x[BOLT_ROM_STATE * row + i];
     for (PetscInt i = 0; i < 12; i++) rom->gap0[12 * e + i] = x[BOLT_ROM_STATE * row + 12 + i];

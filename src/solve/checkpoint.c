@@ -207,16 +207,16 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   /* the contact state of this rank's elements */
   {
     PetscReal   *kall;
-    BoltKeyIndex ix;
+    BoltKeyIndex *ix;
     PetscCall(BoltReadAll(v, comm, "contact_keys", &n, &kall));
     PetscCall(BoltKeyIndexCreate(n, kall, &ix));
     PetscCall(PetscFree(kall));
     PetscCall(BoltReadAll(v, comm, "contact_state", &n, &x));
-    PetscCheck(n == BOLT_CKPT_CONTACT * ix.n, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (contact state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements)", file, n, ix.n);
+    PetscCheck(n == BOLT_CKPT_CONTACT * BoltKeyIndexSize(ix), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (contact state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements)", file, n, BoltKeyIndexSize(ix));
     for (PetscInt e = 0; e < c->nelem; e++) {
       PetscInt         row;
       const PetscReal *s;
-      PetscCall(BoltKeyIndexFind(&ix, c->elem[e].key, &row));
+      PetscCall(BoltKeyIndexFind(ix, c->elem[e].key, &row));
       if (row < 0) {
         missing++;
         continue;
@@ -230,10 +230,10 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
       PetscCall(PetscViewerHDF5HasDataset(v, "snapshot_contact_state", &has));
       PetscCheck(has, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s holds snapshots but not their contact states (an older boltrom wrote it): run again from the start", file);
       PetscCall(BoltReadAll(v, comm, "snapshot_contact_state", &n, &x));
-      PetscCheck(n == 4 * nsnap * ix.n, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (snapshot contact states of %" PetscInt_FMT " values for %" PetscInt_FMT " elements)", file, n, ix.n);
+      PetscCheck(n == 4 * nsnap * BoltKeyIndexSize(ix), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (snapshot contact states of %" PetscInt_FMT " values for %" PetscInt_FMT " elements)", file, n, BoltKeyIndexSize(ix));
       for (PetscInt e = 0; e < c->nelem; e++) {
         PetscInt row;
-        PetscCall(BoltKeyIndexFind(&ix, c->elem[e].key, &row));
+        PetscCall(BoltKeyIndexFind(ix, c->elem[e].key, &row));
         if (row < 0) continue; /* counted as missing above */
         for (PetscInt i = 0; i < nsnap; i++)
           for (PetscInt q = 0; q < 4; q++) nm->snapCodes[4 * c->nelem * i + 4 * e + q] = (unsigned char)x[(row * nsnap + i) * 4 + q];

@@ -56,7 +56,7 @@ static PetscErrorCode FOMVectorsSave(BoltOperator *op, PetscViewer v, PetscInt n
 /* Every rank reads the keyed data and picks its own rows; missing counts the DOFs not found. */
 static PetscErrorCode FOMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt nvec, const char *const names[], Vec y[], PetscInt *missing)
 {
-  BoltKeyIndex       ix = {0, NULL, NULL};
+  BoltKeyIndex      *ix = NULL;
   Vec                keys;
   const PetscScalar *kmine;
   PetscReal         *kall, *x;
@@ -75,7 +75,7 @@ static PetscErrorCode FOMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt n
     PetscCall(VecGetArray(y[f], &a));
     for (PetscInt i = 0; i < nloc; i++) {
       PetscInt row;
-      PetscCall(BoltKeyIndexFind(&ix, (PetscInt)PetscRealPart(kmine[i]), &row));
+      PetscCall(BoltKeyIndexFind(ix, (PetscInt)PetscRealPart(kmine[i]), &row));
       if (row < 0) (*missing)++;
       else a[i] = x[row];
     }

@@ -1,7 +1,7 @@
 /* Files under src/sys: folders made before the files written into them, and the HDF5 datasets
    (PetscViewerHDF5) that the models, checkpoints and ROM files write and read back, with a
    sorted index to find a row by its key, and attributes of a file's root group. */
-#include "boltrom.h"
+#include "private/sys.h"
 #include <petscviewerhdf5.h>
 #include <sys/stat.h>
 
@@ -117,9 +117,13 @@ PetscErrorCode BoltReadAll(PetscViewer v, MPI_Comm comm, const char name[], Pets
 }
 
 /* A sorted index of n keys (integers stored as reals), to find the row of a key. */
-PetscErrorCode BoltKeyIndexCreate(PetscInt n, const PetscReal keys[], BoltKeyIndex *ix)
+PetscErrorCode BoltKeyIndexCreate(PetscInt n, const PetscReal keys[], BoltKeyIndex **ixp)
 {
+  BoltKeyIndex *ix;
+
   PetscFunctionBeginUser;
+  PetscCall(PetscNew(ixp));
+  ix    = *ixp;
   ix->n = n;
   PetscCall(PetscMalloc2(n + 1, &ix->key, n + 1, &ix->row));
   for (PetscInt i = 0; i < n; i++) {
@@ -140,10 +144,18 @@ PetscErrorCode BoltKeyIndexFind(BoltKeyIndex *ix, PetscInt key, PetscInt *row)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex *ix)
+/* The number of keys. */
+PetscInt BoltKeyIndexSize(const BoltKeyIndex *ix)
+{
+  return ix->n;
+}
+
+PetscErrorCode BoltKeyIndexDestroy(BoltKeyIndex **ix)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree2(ix->key, ix->row));
+  if (!*ix) PetscFunctionReturn(0);
+  PetscCall(PetscFree2((*ix)->key, (*ix)->row));
+  PetscCall(PetscFree(*ix));
   PetscFunctionReturn(0);
 }
 
