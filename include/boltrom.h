@@ -174,9 +174,7 @@ typedef struct {
   VecScatter          scatter;        /* global displacement -> uc */
   PetscReal          *nodalArea;      /* nlocal: sum w N n over all Gauss points (vector area of the node) */
   /* scratch */
-  Vec                 uc, fc;         /* local contact displacements and forces (sequential) */
-  Vec                 fcWork, fGlobal; /* nodal sums across ranks: local and global layout */
-  PetscReal          *nodalForce, *tau; /* nlocal, and 3 per Gauss point: work space of the opening test */
+  Vec                 layout;         /* a vector of the global layout (never written: a template) */
 } BoltContactSet;
 
 /* The contact state of one model (contact_state.c): its law and penalties, and at every Gauss
@@ -184,6 +182,7 @@ typedef struct {
    element matrices and K_c of its active set. Each operator owns one. */
 typedef struct {
   BoltContactSet *set;
+  struct _n_BoltContactWork *work; /* this state's work space (displacements, forces, sums) */
   char            lawType[64];
   BoltContactLaw *law;            /* the set's */
   PetscBool       augment;        /* augmented Lagrangian (false: penalty, lambda fixed) */
@@ -232,14 +231,20 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *);
 PetscErrorCode BoltContactSetSetUp(BoltContactSet *);
 PetscErrorCode BoltContactSetSetUpQuadrature(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *);
+/* The work space of one model's contact computations (each contact state owns one, so the FOM's
+   and the ROM's never share): the local contact displacements and forces, and nodal sums. */
+typedef struct _n_BoltContactWork BoltContactWork;
+PetscErrorCode BoltContactWorkCreate(BoltContactSet *, BoltContactWork **);
+PetscErrorCode BoltContactWorkGetDisplacements(BoltContactWork *, Vec *);
+PetscErrorCode BoltContactWorkDestroy(BoltContactWork **);
 PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *, Mat, Mat *);
 PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *, Mat *);
-PetscErrorCode BoltContactSetScatter(BoltContactSet *, Vec);
-PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, PetscReal[]);
-PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, const PetscReal[], Vec);
-PetscErrorCode BoltContactSetNodalStates(BoltContactSet *, const unsigned char[], Vec);
+PetscErrorCode BoltContactSetScatter(BoltContactSet *, BoltContactWork *, Vec);
+PetscErrorCode BoltContactSetGapsOf(BoltContactSet *, BoltContactWork *, PetscReal[]);
+PetscErrorCode BoltContactSetForcesOf(BoltContactSet *, BoltContactWork *, const PetscReal[], Vec);
+PetscErrorCode BoltContactSetNodalStates(BoltContactSet *, BoltContactWork *, const unsigned char[], Vec);
 void           BoltContactElementForces(BoltContactSet *, PetscInt, const PetscReal[], PetscReal[12]);
-PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, const PetscReal[], PetscReal[]);
+PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *, BoltContactWork *, const PetscReal[], PetscReal[]);
 PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *, PetscInt, PetscReal, PetscReal, const PetscBool[], const PetscBool[], const PetscReal[], PetscReal[576]);
 PetscErrorCode BoltContactSetView(BoltContactSet *, PetscViewer);
 PetscErrorCode BoltContactSetDestroy(BoltContactSet **);

@@ -30,7 +30,8 @@ static PetscErrorCode Scene(BoltMesh *m, const char law[], BoltContactSet **cp, 
   c->ngpGlobal = 4;
   PetscCall(PetscCalloc1(1, &c->elem));
   PetscCall(PetscCalloc3(16, &c->gpN, 4, &c->gpW, 12, &c->gpNormal));
-  PetscCall(PetscCalloc3(1, &c->nodalArea, 1, &c->nodalForce, 12, &c->tau));
+  PetscCall(PetscCalloc1(1, &c->nodalArea));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 1, &c->layout)); /* the layout a state's work space copies */
   for (PetscInt q = 0; q < 4; q++) {
     c->gpW[q]              = 1;
     c->gpNormal[3 * q + 2] = 1;

@@ -79,4 +79,12 @@ static inline PetscReal BoltContactStateEpsT(const BoltContactState *s, PetscInt
 {
   return s->released[gp] ? 0 : s->law->ops.stickStiffness(s, pair);
 }
+/* One model's work space over the contact set (fields.c). */
+struct _n_BoltContactWork {
+  Vec        uc, fc;          /* local contact displacements and forces (sequential) */
+  Vec        fcWork, fGlobal; /* nodal sums across ranks: local and global layout */
+  PetscReal *nodalForce;      /* nlocal: nodal sums */
+  PetscReal *tau;             /* 3 per point: tractions being turned into forces or smoothed */
+};
+
 #endif

@@ -200,11 +200,14 @@ PetscErrorCode BoltOutputVertexField(BoltOutput *out, BoltMesh *m, Vec u, const 
    of the local points of contact set c (BoltContactStatePointCodes). */
 PetscErrorCode BoltOutputContactState(BoltOutput *out, BoltMesh *m, BoltContactSet *c, const unsigned char codes[], const char name[])
 {
-  Vec W;
+  Vec              W;
+  BoltContactWork *w;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(c->fGlobal, &W));
-  PetscCall(BoltContactSetNodalStates(c, codes, W));
+  PetscCall(VecDuplicate(c->layout, &W));
+  PetscCall(BoltContactWorkCreate(c, &w));
+  PetscCall(BoltContactSetNodalStates(c, w, codes, W));
+  PetscCall(BoltContactWorkDestroy(&w));
   PetscCall(BoltOutputVertexValues(out, m, W, name, PETSC_TRUE));
   PetscCall(VecDestroy(&W));
   PetscFunctionReturn(0);

@@ -1,26 +1,26 @@
 /* Fields on the contact DOFs of the geometry: the scatter from the global displacement, gaps and
    forces of a field at the Gauss points, nodal sums across ranks, the element stiffness of the
    penalty, and the nodal states written for ParaView. No state of a solve: the caller's. */
-#include "boltrom.h"
+#include "private/contact.h"
 
 static PetscErrorCode BoltContactForcesInto(BoltContactSet *, const PetscReal[], Vec);
 
 /* out = the nodal forces sum w N t of a field t (3 per Gauss point) at the local contact DOFs,
    summed over the elements of every rank (a node on a partition boundary gets both sides). */
-static PetscErrorCode BoltContactSetNodalSum(BoltContactSet *c, const PetscReal t[], PetscReal out[])
+static PetscErrorCode BoltContactSetNodalSum(BoltContactSet *c, BoltContactWork *w, const PetscReal t[], PetscReal out[])
 {
   const PetscScalar *f;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltContactForcesInto(c, t, c->fcWork));
-  PetscCall(VecZeroEntries(c->fGlobal));
-  PetscCall(VecScatterBegin(c->scatter, c->fcWork, c->fGlobal, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(c->scatter, c->fcWork, c->fGlobal, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterBegin(c->scatter, c->fGlobal, c->fcWork, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(c->scatter, c->fGlobal, c->fcWork, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArrayRead(c->fcWork, &f));
+  PetscCall(BoltContactForcesInto(c, t, w->fcWork));
+  PetscCall(VecZeroEntries(w->fGlobal));
+  PetscCall(VecScatterBegin(c->scatter, w->fcWork, w->fGlobal, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->scatter, w->fcWork, w->fGlobal, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterBegin(c->scatter, w->fGlobal, w->fcWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(c->scatter, w->fGlobal, w->fcWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(w->fcWork, &f));
   for (PetscInt i = 0; i < c->nlocal; i++) out[i] = PetscRealPart(f[i]);
-  PetscCall(VecRestoreArrayRead(c->fcWork, &f));
+  PetscCall(VecRestoreArrayRead(w->fcWork, &f));
   PetscFunctionReturn(0);
 }
 
@@ -30,10 +30,10 @@ static PetscErrorCode BoltContactSetNodalSum(BoltContactSet *c, const PetscReal 
    exerts no nodal force is not determined by the discrete problem: near the edge of the contact
    zone it shows as Gauss-point multipliers of tens of MPa of either sign over a compressed node.
    The smoothed traction depends only on the forces the multipliers exert. */
-PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *c, const PetscReal t[], PetscReal tn[])
+PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *c, BoltContactWork *w, const PetscReal t[], PetscReal tn[])
 {
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetNodalSum(c, t, c->nodalForce));
+  PetscCall(BoltContactSetNodalSum(c, w, t, w->nodalForce));
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt *loc = &c->elemLocal[24 * e];
     for (PetscInt q = 0; q < 4; q++) {
@@ -45,7 +45,7 @@ PetscErrorCode BoltContactSetSmoothedNormalTraction(BoltContactSet *c, const Pet
         PetscReal       fn = 0, an = 0;
         if (ii[0] < 0) continue;                                              /* both sides clamped */
         for (PetscInt k = 0; k < 3; k++) {
-          fn += c->nodalForce[ii[k]] * n[k];
+          fn += w->nodalForce[ii[k]] * n[k];
           an += c->nodalArea[ii[k]] * n[k];
         }
         if (an == 0) continue;
@@ -88,15 +88,20 @@ PetscErrorCode BoltContactSetSetUpQuadrature(BoltContactSet *c, Vec layout)
       c->elemLocal[24 * e + k] = loc;
     }
   PetscCall(PetscFree2(glob, perm));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &c->uc));
-  PetscCall(VecDuplicate(c->uc, &c->fc));
-  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, c->localGlobal, PETSC_COPY_VALUES, &isGlobal));
-  PetscCall(VecScatterCreate(layout, isGlobal, c->uc, NULL, &c->scatter));
-  PetscCall(ISDestroy(&isGlobal));
-  PetscCall(VecDuplicate(c->uc, &c->fcWork));
-  PetscCall(VecDuplicate(layout, &c->fGlobal));
-  PetscCall(PetscMalloc3(n + 1, &c->nodalArea, n + 1, &c->nodalForce, 12 * ne + 1, &c->tau));
-  PetscCall(BoltContactSetNodalSum(c, c->gpNormal, c->nodalArea));
+  {
+    Vec             uc;
+    BoltContactWork *w;
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &uc));
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, c->localGlobal, PETSC_COPY_VALUES, &isGlobal));
+    PetscCall(VecScatterCreate(layout, isGlobal, uc, NULL, &c->scatter));
+    PetscCall(ISDestroy(&isGlobal));
+    PetscCall(VecDestroy(&uc));
+    PetscCall(VecDuplicate(layout, &c->layout));
+    PetscCall(PetscMalloc1(n + 1, &c->nodalArea));
+    PetscCall(BoltContactWorkCreate(c, &w));
+    PetscCall(BoltContactSetNodalSum(c, w, c->gpNormal, c->nodalArea));
+    PetscCall(BoltContactWorkDestroy(&w));
+  }
   {
     PetscInt ngp = 4 * ne;
     PetscCall(MPIU_Allreduce(&ngp, &c->ngpGlobal, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
@@ -111,8 +116,8 @@ PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *c, Mat *Kc)
   PetscInt ne = c->nelem, *ci, *cj, ncoo = 576 * ne, m, M;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(c->fGlobal, &m)); /* a vector of the global layout */
-  PetscCall(VecGetSize(c->fGlobal, &M));
+  PetscCall(VecGetLocalSize(c->layout, &m));
+  PetscCall(VecGetSize(c->layout, &M));
   PetscCall(MatCreate(c->mesh->comm, Kc));
   PetscCall(MatSetSizes(*Kc, m, m, M, M));
   PetscCall(MatSetType(*Kc, MATAIJ));
@@ -144,21 +149,22 @@ PetscErrorCode BoltContactSetElementStiffness(BoltContactSet *c, PetscInt e, Pet
   PetscFunctionReturn(0);
 }
 
-/* uc <- the contact DOFs of a global displacement vector (the FOM's way). */
-PetscErrorCode BoltContactSetScatter(BoltContactSet *c, Vec u)
+/* The work space's uc <- the contact DOFs of a global displacement vector (the FOM's way). */
+PetscErrorCode BoltContactSetScatter(BoltContactSet *c, BoltContactWork *w, Vec u)
 {
   PetscFunctionBeginUser;
-  PetscCall(VecScatterBegin(c->scatter, u, c->uc, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(c->scatter, u, c->uc, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterBegin(c->scatter, u, w->uc, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(c->scatter, u, w->uc, INSERT_VALUES, SCATTER_FORWARD));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltContactSetGapsOf(BoltContactSet *c, PetscReal gap[])
+/* The gaps at every point of the work space's contact displacements uc. */
+PetscErrorCode BoltContactSetGapsOf(BoltContactSet *c, BoltContactWork *w, PetscReal gap[])
 {
   const PetscScalar *u;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(c->uc, &u));
+  PetscCall(VecGetArrayRead(w->uc, &u));
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscInt *loc = &c->elemLocal[24 * e];
     for (PetscInt q = 0; q < 4; q++) {
@@ -174,32 +180,32 @@ PetscErrorCode BoltContactSetGapsOf(BoltContactSet *c, PetscReal gap[])
       }
     }
   }
-  PetscCall(VecRestoreArrayRead(c->uc, &u));
+  PetscCall(VecRestoreArrayRead(w->uc, &u));
   PetscFunctionReturn(0);
 }
 
 /* F = B' lambda: the nodal forces of the tractions lambda (3 per point) in the global layout of
    F, both sides of every pair. */
-PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, const PetscReal lambda[], Vec F)
+PetscErrorCode BoltContactSetForcesOf(BoltContactSet *c, BoltContactWork *w, const PetscReal lambda[], Vec F)
 {
   PetscFunctionBeginUser;
-  PetscCall(BoltContactForcesInto(c, lambda, c->fc));
+  PetscCall(BoltContactForcesInto(c, lambda, w->fc));
   PetscCall(VecZeroEntries(F));
-  PetscCall(VecScatterBegin(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterBegin(c->scatter, w->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->scatter, w->fc, F, ADD_VALUES, SCATTER_REVERSE));
   PetscFunctionReturn(0);
 }
 
 /* The contact state at the nodes, for the output: in F (global layout, 3 per node) the weights
    sum N_a of the node's open, sticking and slipping points (x, y and z: one per point with nodal
    quadrature), on both sides of each pair. codes: each local point's (BoltContactStatePointCodes). */
-PetscErrorCode BoltContactSetNodalStates(BoltContactSet *c, const unsigned char codes[], Vec F)
+PetscErrorCode BoltContactSetNodalStates(BoltContactSet *c, BoltContactWork *w, const unsigned char codes[], Vec F)
 {
   PetscScalar *f;
 
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(c->fc));
-  PetscCall(VecGetArray(c->fc, &f));
+  PetscCall(VecZeroEntries(w->fc));
+  PetscCall(VecGetArray(w->fc, &f));
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
     const PetscReal *N   = &c->gpN[4 * gp];
@@ -209,10 +215,10 @@ PetscErrorCode BoltContactSetNodalStates(BoltContactSet *c, const unsigned char 
       if (ib >= 0) f[ib] += N[a];
     }
   }
-  PetscCall(VecRestoreArray(c->fc, &f));
+  PetscCall(VecRestoreArray(w->fc, &f));
   PetscCall(VecZeroEntries(F));
-  PetscCall(VecScatterBegin(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(c->scatter, c->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterBegin(c->scatter, w->fc, F, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(c->scatter, w->fc, F, ADD_VALUES, SCATTER_REVERSE));
   PetscFunctionReturn(0);
 }
 
@@ -321,5 +327,42 @@ PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *c)
   PetscCall(DMDestroy(&dmv));
   for (PetscInt p = 0; p < np; p++)
     PetscCheck(held[p], m->comm, PETSC_ERR_USER_INPUT, "Part %s is held by neither the clamp group '%s' nor, through shared nodes or contact pairs (contact_<pair>_a/_b), by a part that is: it would float free; extend the clamp group, add a contact pair, or run free-free with -clamp false", m->partName[p], m->clampGroup);
+  PetscFunctionReturn(0);
+}
+
+/* A work space over the set (after its quadrature is set up). */
+PetscErrorCode BoltContactWorkCreate(BoltContactSet *c, BoltContactWork **wp)
+{
+  BoltContactWork *w;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&w));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->nlocal, &w->uc));
+  PetscCall(VecDuplicate(w->uc, &w->fc));
+  PetscCall(VecDuplicate(w->uc, &w->fcWork));
+  PetscCall(VecDuplicate(c->layout, &w->fGlobal));
+  PetscCall(PetscMalloc2(c->nlocal + 1, &w->nodalForce, 12 * c->nelem + 1, &w->tau));
+  *wp = w;
+  PetscFunctionReturn(0);
+}
+
+/* The local contact displacements (the work space's: an operator fills them). */
+PetscErrorCode BoltContactWorkGetDisplacements(BoltContactWork *w, Vec *uc)
+{
+  PetscFunctionBeginUser;
+  *uc = w->uc;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltContactWorkDestroy(BoltContactWork **wp)
+{
+  PetscFunctionBeginUser;
+  if (!*wp) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&(*wp)->uc));
+  PetscCall(VecDestroy(&(*wp)->fc));
+  PetscCall(VecDestroy(&(*wp)->fcWork));
+  PetscCall(VecDestroy(&(*wp)->fGlobal));
+  PetscCall(PetscFree2((*wp)->nodalForce, (*wp)->tau));
+  PetscCall(PetscFree(*wp));
   PetscFunctionReturn(0);
 }

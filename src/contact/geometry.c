@@ -403,11 +403,8 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
   PetscCall(PetscFree3((*cs)->gpN, (*cs)->gpW, (*cs)->gpNormal));
   PetscCall(PetscFree((*cs)->elemLocal));
   PetscCall(PetscFree((*cs)->localGlobal));
-  PetscCall(VecDestroy(&(*cs)->uc));
-  PetscCall(VecDestroy(&(*cs)->fc));
-  PetscCall(VecDestroy(&(*cs)->fcWork));
-  PetscCall(VecDestroy(&(*cs)->fGlobal));
-  PetscCall(PetscFree3((*cs)->nodalArea, (*cs)->nodalForce, (*cs)->tau));
+  PetscCall(VecDestroy(&(*cs)->layout));
+  PetscCall(PetscFree((*cs)->nodalArea));
   PetscCall(VecScatterDestroy(&(*cs)->scatter));
   PetscCall(BoltContactLawDestroy(&(*cs)->law));
   PetscCall(PetscFree(*cs));

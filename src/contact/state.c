@@ -37,6 +37,7 @@ PetscErrorCode BoltContactStateCreate(BoltContactSet *c, BoltContactState **sp)
   s->slipStiffnessRatio = c->slipStiffnessRatio;
   PetscCall(PetscMalloc4(4 * ne + 1, &s->active, 4 * ne + 1, &s->activeOld, 4 * ne + 1, &s->activeOlder, 4 * ne + 1, &s->released));
   PetscCall(PetscMalloc1(ne + 1, &s->dirty));
+  PetscCall(BoltContactWorkCreate(c, &s->work));
   PetscCall(BoltContactStateReset(s));
   *sp = s;
   PetscFunctionReturn(0);
@@ -48,6 +49,7 @@ PetscErrorCode BoltContactStateDestroy(BoltContactState **sp)
 
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(0);
+  PetscCall(BoltContactWorkDestroy(&s->work));
   PetscCall(PetscFree2(s->lambda, s->gap));
   PetscCall(PetscFree2(s->anchor, s->lambdaForce));
   PetscCall(PetscFree4(s->lambdaPrev, s->closedSteps, s->slipStart, s->slipDir));
@@ -195,7 +197,7 @@ PetscErrorCode BoltContactStateGaps(BoltContactState *s)
   BoltContactSet *c = s->set;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetGapsOf(c, s->gap));
+  PetscCall(BoltContactSetGapsOf(c, s->work, s->gap));
   BoltContactStateAnchorGaps(s, s->gap);
   PetscFunctionReturn(0);
 }

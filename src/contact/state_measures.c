@@ -133,8 +133,8 @@ PetscErrorCode BoltContactStateNodalForces(BoltContactState *s, Vec F)
   BoltContactSet *c = s->set;
 
   PetscFunctionBeginUser;
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) BoltContactStateTraction(s, gp / 4, gp, &c->tau[3 * gp]);
-  PetscCall(BoltContactSetForcesOf(c, c->tau, F));
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) BoltContactStateTraction(s, gp / 4, gp, &s->work->tau[3 * gp]);
+  PetscCall(BoltContactSetForcesOf(c, s->work, s->work->tau, F));
   PetscCall(VecScale(F, -1.0)); /* B' t is on the right-hand side with a minus */
   PetscFunctionReturn(0);
 }
@@ -212,9 +212,9 @@ PetscErrorCode BoltContactStateComplementarity(BoltContactState *s, PetscReal *p
 
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
-    for (PetscInt k = 0; k < 3; k++) c->tau[3 * gp + k] = s->active[gp] ? s->lambda[3 * gp + k] : 0;
+    for (PetscInt k = 0; k < 3; k++) s->work->tau[3 * gp + k] = s->active[gp] ? s->lambda[3 * gp + k] : 0;
   PetscCall(PetscMalloc1(4 * c->nelem + 1, &tn));
-  PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tn));
+  PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, s->work->tau, tn));
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
     const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp], gn = g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
     loc[0] = PetscMax(loc[0], -gn);

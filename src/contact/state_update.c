@@ -166,16 +166,16 @@ PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpe
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt   gp = 4 * e + q;
-      PetscReal *t  = &c->tau[3 * gp];
+      PetscReal *t  = &s->work->tau[3 * gp];
       if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
       else if (BoltContactStateLambdaIsTraction(s)) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
       else s->law->ops.trial(s, gp, pair, t);
     }
   }
-  if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, tnOpen));
+  if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, s->work->tau, tnOpen));
   else
     for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
-      const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
+      const PetscReal *t = &s->work->tau[3 * gp], *n = &c->gpNormal[3 * gp];
       tnOpen[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
     }
   PetscFunctionReturn(0);

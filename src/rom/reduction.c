@@ -33,21 +33,26 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
 /* Rows of V at this rank's contact DOFs (through the contact scatter) and at the probe. */
 static PetscErrorCode BoltROMExtractRows(BoltROM *rom, BV V, BoltLoadSet *loads)
 {
+  BoltContactWork *w;
+  Vec              uc;
   BoltContactSet *c = rom->contact;
   Vec             e;
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1(c->nlocal * rom->n + 1, &rom->Vc));
+  PetscCall(BoltContactWorkCreate(c, &w));
+  PetscCall(BoltContactWorkGetDisplacements(w, &uc));
   for (PetscInt j = 0; j < rom->n; j++) {
     Vec                v;
     const PetscScalar *u;
     PetscCall(BVGetColumn(V, j, &v));
-    PetscCall(BoltContactSetScatter(c, v));
+    PetscCall(BoltContactSetScatter(c, w, v));
     PetscCall(BVRestoreColumn(V, j, &v));
-    PetscCall(VecGetArrayRead(c->uc, &u));
+    PetscCall(VecGetArrayRead(uc, &u));
     for (PetscInt i = 0; i < c->nlocal; i++) rom->Vc[i + c->nlocal * j] = u[i];
-    PetscCall(VecRestoreArrayRead(c->uc, &u));
+    PetscCall(VecRestoreArrayRead(uc, &u));
   }
+  PetscCall(BoltContactWorkDestroy(&w));
   PetscCall(VecDuplicate(loads->load, &e));
   PetscCall(VecZeroEntries(e));
   if (loads->probeDof >= 0) PetscCall(VecSetValue(e, loads->probeDof, 1.0, INSERT_VALUES));

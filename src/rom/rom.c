@@ -273,7 +273,7 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   Vec       q, f, qr;
   KSP       ksp, kspr;
   PetscReal s0 = rom->s0, num[2] = {0, 0}, den[2] = {0, 0}, pf, pr;
-  Vec       ucFull;
+  Vec       ucFull, ucRed; /* the FOM's (its state's) and the ROM's contact displacements */
   BoltContactState *sFull;
 
   PetscFunctionBeginUser;
@@ -301,20 +301,20 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(BoltDirectSolverCreate(rom->comm, NULL, A, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
   PetscCall(KSPSolve(ksp, f, q));
   /* compare at the contact DOFs and the probe */
-  PetscCall(BoltContactSetScatter(c, q));
-  PetscCall(VecDuplicate(c->uc, &ucFull));
-  PetscCall(VecCopy(c->uc, ucFull));
+  PetscCall(BoltContactSetScatter(c, sFull->work, q));
+  PetscCall(BoltContactWorkGetDisplacements(sFull->work, &ucFull));
   PetscCall(op->ops.contactDisplacements(op, qr));
+  PetscCall(BoltContactWorkGetDisplacements(op->state->work, &ucRed));
   {
     const PetscScalar *a, *b;
     PetscCall(VecGetArrayRead(ucFull, &a));
-    PetscCall(VecGetArrayRead(c->uc, &b));
+    PetscCall(VecGetArrayRead(ucRed, &b));
     for (PetscInt i = 0; i < c->nlocal; i++) {
       num[0] += PetscSqr(PetscRealPart(a[i] - b[i]));
       den[0] += PetscSqr(PetscRealPart(a[i]));
     }
     PetscCall(VecRestoreArrayRead(ucFull, &a));
-    PetscCall(VecRestoreArrayRead(c->uc, &b));
+    PetscCall(VecRestoreArrayRead(ucRed, &b));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, num, 1, MPIU_REAL, MPI_SUM, rom->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, den, 1, MPIU_REAL, MPI_SUM, rom->comm));
@@ -322,7 +322,6 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(op->ops.probe(op, qr, &pr));
   *err = PetscMax(PetscSqrtReal(num[0] / den[0]), PetscAbsReal(pr - pf) / PetscAbsReal(pf));
   PetscCall(PetscPrintf(rom->comm, "ROM check at s0 = %g rad/s, tied joint: relative error %.3e at the contact DOFs, %.3e at the probe\n", (double)s0, (double)PetscSqrtReal(num[0] / den[0]), (double)(PetscAbsReal(pr - pf) / PetscAbsReal(pf))));
-  PetscCall(VecDestroy(&ucFull));
   PetscCall(VecDestroy(&q));
   PetscCall(VecDestroy(&qr));
   PetscCall(KSPDestroy(&ksp));

@@ -308,7 +308,7 @@ static PetscErrorCode ROMLoadContactRows(BoltROM *rom, BoltContactSet *c, BoltLo
     }
     PetscCall(PetscSortIntWithArray(ncd, fileKey, perm));
     PetscCall(BoltMeshDofKeys(c->mesh, loads->load, &keys));
-    PetscCall(VecDuplicate(c->uc, &ckeys));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->nlocal, &ckeys));
     PetscCall(VecScatterBegin(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(VecScatterEnd(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(PetscCalloc1(c->nlocal * n + 1, &rom->Vc));

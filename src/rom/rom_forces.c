@@ -11,13 +11,15 @@ PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
   BoltContactSet    *c   = rom->contact;
   const PetscScalar *x;
   PetscScalar       *u;
+  Vec                uc;
 
   PetscFunctionBeginUser;
   if (!c->nlocal) PetscFunctionReturn(0);
+  PetscCall(BoltContactWorkGetDisplacements(op->state->work, &uc)); /* this operator's own */
   PetscCall(VecGetArrayRead(q, &x));
-  PetscCall(VecGetArray(c->uc, &u));
+  PetscCall(VecGetArray(uc, &u));
   ROMRowsTimes(c->nlocal, rom->n, rom->Vc, c->nlocal, x, u);
-  PetscCall(VecRestoreArray(c->uc, &u));
+  PetscCall(VecRestoreArray(uc, &u));
   PetscCall(VecRestoreArrayRead(q, &x));
   PetscFunctionReturn(0);
 }

@@ -22,7 +22,7 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   PetscFunctionBeginUser;
   if (op->state->augment) {
     PetscCall(ROMContactDisplacements(op, q));
-    PetscCall(BoltContactSetGapsOf(c, gap));
+    PetscCall(BoltContactSetGapsOf(c, op->state->work, gap));
     PetscFunctionReturn(0);
   }
   if (rom->pairGaps) { /* the owned pairs' gaps (the held ones once), sent to their points */
@@ -97,22 +97,25 @@ PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
     PetscFunctionReturn(0);
   }
   if (!rom->tnValid || rom->tnVersion != s->version) {
+    PetscReal *tau; /* 3 per point: the tractions whose normal part is wanted */
+    PetscCall(PetscMalloc1(3 * ngp + 1, &tau));
     for (PetscInt pass = 0; pass < 2; pass++) {
       PetscReal *out = pass ? rom->tnK : rom->tnC;
       for (PetscInt gp = 0; gp < ngp; gp++) {
         const PetscReal *n    = &c->gpNormal[3 * gp], zero[3] = {0, 0, 0};
-        PetscReal       *t    = &c->tau[3 * gp];
+        PetscReal       *t    = &tau[3 * gp];
         if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
         else if (!pass) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
         else BoltContactStateTrialOf(s, gp, zero, n, t);
       }
-      if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, c->tau, out));
+      if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, tau, out));
       else
         for (PetscInt gp = 0; gp < ngp; gp++) {
-          const PetscReal *t = &c->tau[3 * gp], *n = &c->gpNormal[3 * gp];
+          const PetscReal *t = &tau[3 * gp], *n = &c->gpNormal[3 * gp];
           out[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
         }
     }
+    PetscCall(PetscFree(tau));
     rom->tnVersion = s->version;
     rom->tnValid   = PETSC_TRUE;
   }

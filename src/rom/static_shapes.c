@@ -120,7 +120,7 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
   PetscCall(VecDuplicate(op->preload, preload));
   PetscCall(VecCopy(op->preload, *preload));
   PetscCall(PetscMalloc4(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0, 4 * c->nelem + 1, &rom->released0));
-  PetscCall(BoltContactSetScatter(c, *start));
+  PetscCall(BoltContactSetScatter(c, s->work, *start));
   PetscCall(BoltContactStateGaps(s));
   for (PetscInt k = 0; k < 12 * c->nelem; k++) {
     rom->lambda0[k] = s->lambda[k] / F;

@@ -64,7 +64,7 @@ PetscErrorCode BoltContactMonitorTension(BoltDual *d)
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(4 * c->nelem + 1, &ts));
-  PetscCall(BoltContactSetSmoothedNormalTraction(c, s->lambda, ts));
+  PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, s->lambda, ts));
   for (PetscInt e = 0; e < c->nelem; e++) {
     const PetscReal band = s->bandTraction[c->elem[e].pair];
     for (PetscInt q = 0; q < 4; q++) {

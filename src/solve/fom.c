@@ -9,7 +9,7 @@ typedef struct {
 static PetscErrorCode FOMContactDisplacements(BoltOperator *op, Vec q)
 {
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetScatter(op->contact, q));
+  PetscCall(BoltContactSetScatter(op->contact, op->state->work, q));
   PetscFunctionReturn(0);
 }
 
@@ -18,7 +18,7 @@ static PetscErrorCode FOMContactForces(BoltOperator *op, const PetscReal lambda[
   BoltContactSet *c = op->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetForcesOf(c, lambda, F));
+  PetscCall(BoltContactSetForcesOf(c, op->state->work, lambda, F));
   PetscFunctionReturn(0);
 }
 
