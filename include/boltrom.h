@@ -578,7 +578,7 @@ PetscErrorCode BoltOutputSnapshotSeries(BoltOutput *, const char[], PetscInt, co
 PetscErrorCode BoltOutputContactState(BoltOutput *, BoltMesh *, BoltContactSet *, const unsigned char[], const char[]);
 PetscErrorCode BoltOutputSnapshotStates(BoltOutput *, BoltMesh *, const char[], BoltContactSet *, PetscInt, const unsigned char[]);
 
-/* JSON summary: a flat writer for the keys the README documents. */
+/* The JSON summary writer (src/sys/json.c); docs/outputs.md lists the keys. */
 PetscErrorCode BoltJSONOpen(MPI_Comm, const char[], BoltJSON **);
 PetscErrorCode BoltJSONBeginObject(BoltJSON *, const char[]);
 PetscErrorCode BoltJSONEndObject(BoltJSON *);

@@ -17,7 +17,7 @@ SCENES = [  # (name, options, whether the opening shapes' defaults were chosen l
     ("P5k-C300", ["-preload_force", "5000", "-load_force", "300", "-load_group", "corner_point"], "no"),
 ]
 
-# Coulomb friction, mu 0.1 on every pair, level 0.5's figures in docs/results.md "Coulomb friction";
+# Coulomb friction, mu 0.1 on every pair, level 0.5's figures in docs/results.md "The joint under friction";
 # tuned: the slip shapes were added looking at the first scene
 FRICTION = ["-contact_law", "coulomb", "-contact_friction", "0.1"]
 FRICTION_SCENES = [

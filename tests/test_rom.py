@@ -89,7 +89,7 @@ def test_rom_with_interface_reduction(joint_small, tmp_path):
     # fewer reduced DOFs than contact constraints: the reduced dual loop uses the penalty law
     assert r["contact_law"] == "penalty" and r["failures"] == 0
     assert r["preload_state"] == 1 and r["closed_krylov"] == 3 and r["contact_penalty_scale"] == 500 and r["contact_band_scale"] == 1
-    assert s["errors"]["load_point"]["e_L2"] < 3e-4  # offline static solves at the FOM's own penalty give about 4e-4 here (docs/reduction.md)
+    assert s["errors"]["load_point"]["e_L2"] < 3e-4  # offline static solves at the FOM's own penalty give about 4e-4 here (docs/decisions.md)
 
 
 def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
@@ -105,7 +105,7 @@ def test_rom_starts_from_the_foms_preloaded_state(joint_small, tmp_path):
         fom, rom = f["/fom/probe"][...], f["/rom/probe"][...]
     scale = np.abs(fom).max()
     print("preloaded probe: FOM", fom[0], "ROM", rom[0], "; e_L2", s["errors"]["load_point"]["e_L2"])
-    # the penalty law alone started 7 times further down (docs/reduction.md). The offline phase takes the FOM
+    # the penalty law alone started 7 times further down (docs/decisions.md). The offline phase takes the FOM
     # run's own preloaded state, so the start is the FOM's to the round-off of the reduced system
     # under its near-hard penalty (solving it again instead moved the start far more than this bound)
     assert abs(rom[0] - fom[0]) <= 1e-7 * scale
@@ -247,7 +247,7 @@ def test_offline_static_solves_under_a_stiff_penalty(joint_small, tmp_path):
     """The offline phase's static solves from the preloaded state (load response, closed-contact
     Krylov vectors) end with the active gaps closed, whatever the penalty; a stiffer one only
     conditions their multiplier CG better, the more so on fine meshes (1e4 times is the default;
-    docs/reduction.md). Here: at 1e4 and 1e5 x the ROM's histories agree to 1e-3, and at 1e4 x the
+    docs/decisions.md). Here: at 1e4 and 1e5 x the ROM's histories agree to 1e-3, and at 1e4 x the
     solves need at most a third of the iterations of 1 x and the ROM is no further from the FOM."""
     from conftest import run_boltrom
     mesh, _ = joint_small
@@ -271,7 +271,7 @@ def test_closed_contact_vectors_keep_the_preloaded_active_set(joint_small, tmp_p
     """The closed-contact Krylov vectors are shapes of the joint as preloaded. Their forcing (the
     mass times the previous vector) is spread over the whole volume, and when it was free to
     change the active set it opened rim points on fine meshes, and the basis of that opened joint
-    was less accurate than with the set kept (docs/reduction.md). Here: with the set kept every
+    was less accurate than with the set kept (docs/decisions.md). Here: with the set kept every
     vector ends with the preloaded count of closed points in one outer iteration, and the ROM is
     no further from the FOM than with the set free."""
     from conftest import run_boltrom

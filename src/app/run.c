@@ -22,7 +22,7 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
   PetscCall(PetscOptionsString("-output_name", "Base name of the HDF5/XDMF files", NULL, o->outputName, o->outputName, sizeof(o->outputName), NULL));
   PetscCall(PetscOptionsBool("-output", "Write the HDF5/XDMF results", NULL, o->writeOutput, &o->writeOutput, NULL));
-  PetscCall(PetscOptionsString("-summary", "Write a JSON summary to this file (keys: README, Outputs)", NULL, o->summary, o->summary, sizeof(o->summary), NULL));
+  PetscCall(PetscOptionsString("-summary", "Write a JSON summary to this file (its keys: docs/outputs.md)", NULL, o->summary, o->summary, sizeof(o->summary), NULL));
   PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
   PetscCall(PetscOptionsBool("-fom", "Run the full-order model with contact: static preload, then the Newmark transient", NULL, o->fom, &o->fom, NULL));
   PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));

@@ -1,5 +1,5 @@
 /* A run's JSON summary (-summary): the model, the load, the tied analyses, and the FOM's and the
-   ROM's runs with their counters and phase times; the keys are listed in the README. The HDF5/XDMF
+   ROM's runs with their counters and phase times; docs/outputs.md lists the keys. The HDF5/XDMF
    file of its fields and histories is fields.c's. */
 #include "private/app.h"
 

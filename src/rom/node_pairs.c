@@ -175,7 +175,7 @@ PetscErrorCode BoltNodePairPatterns(MPI_Comm comm, PetscInt npair, const PetscIn
   /* every snapshot's pattern at unit norm: the small loads' creep shapes the patterns as much as
      the large loads' slip (unscaled, the leading patterns were the large cycles', and a ROM with
      72 of them was 25 - 28 % over in the creep bursts at 10 and 30 N; scaled, 80 kept it within
-     5.4 %: docs/reduction.md, "Cone modes") */
+     5.4 %: docs/decisions.md, -rom_cone_modes) */
   for (PetscInt j = 0; j < ns; j++) {
     PetscReal nrm = 0;
     for (PetscInt i = 0; i < npair; i++) nrm += Ra[i + npair * j] * Ra[i + npair * j];

@@ -6,13 +6,13 @@
 /* The ROM's activation band (the tension at which a closed point opens), relative to the FOM's.
    Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
    at the rim of the preloaded zone the FOM's band lets such errors open points the FOM keeps
-   closed. A wider band helps there but not in paper-step (docs/results.md), so 1 stays the default
+   closed. A wider band helps there but not in paper-step (docs/decisions.md), so 1 stays the default
    for the stick law. Under the strict law the band (1e-10 E) is its FOM's solver tolerance. An
    interface-reduced ROM without opening shapes cannot resolve tractions at single rim pairs that
    finely (its rim pairs then open and close about a hundred times in paper-step at level 1 while
    the FOM's set holds) and judges with the stick law's band, 2e5 times the strict one. With
    opening shapes, or snapshot modes of the FOM's run, it can open the pairs the load opens, and
-   keeps the strict band (docs/reduction.md).
+   keeps the strict band (docs/decisions.md).
    Which applies is known once the basis is. */
 static PetscReal ROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom)
 {
@@ -79,7 +79,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   /* Against a FOM that closes its gaps the increments want a near-hard penalty: 1e5 E/m (500 x
      the paper's), where the penalty law alone matches the augmented FOM. Without the closed-contact
      Krylov shapes so stiff a penalty locks the reduced interface, and 4e3 E/m (20 x the paper's)
-     does best (docs/reduction.md). The scale is relative to the FOM's penalty, whatever its law. */
+     does best (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
   rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augment ? (o->nClosed > 0 ? 1e5 : 4e3) / contact->penaltyFactor : 1.0);
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
   staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && loads->hasPreload && loads->preloadForce != 0));

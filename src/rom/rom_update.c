@@ -23,7 +23,7 @@
 #include "private/rom.h"
 #include <petscblaslapack.h>
 
-#define ROM_REFERENCES 4 /* kept factorisations: 4 to 16 did about as well (docs/results.md) */
+#define ROM_REFERENCES 4 /* kept factorisations (docs/reduction.md, section 7): 4 to 16 did about as well */
 
 typedef struct {
   PetscBool  valid;
