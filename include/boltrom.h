@@ -508,8 +508,6 @@ PetscErrorCode BoltGatherAll(MPI_Comm, MPI_Datatype, const void *, PetscInt, voi
 PetscErrorCode BoltGrowReal(PetscReal **, PetscInt *, PetscInt);
 
 /* ------------------------------------------------------------------ reduction.c, rom.c */
-#include "boltrom_krylov.h" /* BoltKrylov: the basis's options */
-
 /* The reduction's options as given (-rom_*, read by BoltROMSetFromOptions); 0 or -1 where the
    default is resolved by BoltROMSetUp */
 typedef struct _n_BoltReductionOptions BoltReductionOptions;

@@ -2,6 +2,7 @@
 #define BOLTROM_PRIVATE_ROM_H
 /* Inside the reduced operator (src/rom/rom*.c): what its files share and no other module sees. */
 #include "boltrom.h"
+#include "private/boltrom_krylov.h" /* BoltKrylov: the basis's options */
 
 /* A point at a node pair (a changed point of the nodal quadrature, or an element's corner): its
    node pair (global DOFs of the x components on sides b and a, -1 where clamped), its name

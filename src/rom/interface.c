@@ -11,7 +11,7 @@
    model is then built with the bordered solve y -> T (T' Kt T)^-1 T' y (interior solves and the
    small Schur complement V_IR' S_t V_IR), so T' Kt T is never formed. */
 #include "private/rom.h"
-#include "boltrom_interface.h"
+#include "private/boltrom_interface.h"
 
 static PetscErrorCode IRFullSolve(BoltInterface *ir, Vec b, Vec x)
 {

@@ -14,7 +14,7 @@
    its norm after orthogonalization is below deflationTol times its norm before. The same routine
    orthonormalizes the coefficient vectors. Only the last block needs no coefficients. */
 #include "private/krylov.h"
-#include "boltrom_krylov.h"
+#include "private/boltrom_krylov.h"
 #include <petscksp.h>
 
 PetscErrorCode BoltKrylovCreate(MPI_Comm comm, BoltKrylov **kr)

@@ -2,7 +2,7 @@
    three patterns, its direct factorisation, and block solves with it (or with the caller's
    solver, such as the interface reduction's bordered solve). */
 #include "private/krylov.h"
-#include "boltrom_krylov.h"
+#include "private/boltrom_krylov.h"
 #include <petscksp.h>
 
 /* Exact comparison of two SeqAIJ patterns */

@@ -3,8 +3,8 @@
    the patterns of a training run's change at them (SVD of the snapshots' relative motion). */
 #include "private/rom.h"
 #include <petscblaslapack.h>
-#include "boltrom_krylov.h"
-#include "boltrom_interface.h"
+#include "private/boltrom_krylov.h"
+#include "private/boltrom_interface.h"
 
 /* The distinct matched node pairs, over all ranks, as (a dof, b dof) of their x component (-1 on a
    clamped side): every pair of the local elements, or with a mask (4 per element) only those of

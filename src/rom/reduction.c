@@ -2,8 +2,8 @@
    Krylov basis of boltrom_krylov.h, and the projection onto it (BoltROM). */
 #include "private/rom.h"
 #include <petscblaslapack.h>
-#include "boltrom_krylov.h"
-#include "boltrom_interface.h"
+#include "private/boltrom_krylov.h"
+#include "private/boltrom_interface.h"
 
 /* Columns e_a - e_b for every matched node pair and direction, then the load and the preload. */
 static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, BV *B, PetscInt *ncols)

@@ -1,7 +1,7 @@
 /* The ROM's settings: every default of the reduction resolved from its options and the scene,
    the fingerprint of what the basis depends on, and the reuse of a matching ROM file. */
 #include "private/rom.h"
-#include "boltrom_krylov.h"
+#include "private/boltrom_krylov.h"
 
 /* The ROM's activation band (the tension at which a closed point opens), relative to the FOM's.
    Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:

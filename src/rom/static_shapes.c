@@ -3,8 +3,8 @@
    the responses to unit force pairs where the load opens the joint or makes it slip. */
 #include "private/rom.h"
 #include <petscblaslapack.h>
-#include "boltrom_krylov.h"
-#include "boltrom_interface.h"
+#include "private/boltrom_krylov.h"
+#include "private/boltrom_interface.h"
 
 /* Static Krylov vectors of the joint in its current contact state: out[k] = q(base + f_k) - qBase,
    with f_k = M out[k-1] (f_0 = M w0) scaled to the norm nforce, each solved by the dual loop from

@@ -6,7 +6,7 @@ static char help[] = "Verification of the block second-order Krylov basis (boltr
                      "With -bench: only times BoltKrylovBuild on a larger grid (-bench_nodes per side, -bench_columns\n"
                      "unit inputs on the middle plane, -krylov_* options).\n";
 
-#include <boltrom_krylov.h> /* petscsys.h must precede petscblaslapack.h */
+#include "private/boltrom_krylov.h" /* petscsys.h must precede petscblaslapack.h */
 #include <petscksp.h>
 #include <petscblaslapack.h>
 
