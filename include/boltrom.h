@@ -437,46 +437,7 @@ typedef enum { BOLT_LOAD_STEP = 0, BOLT_LOAD_SINE = 1, BOLT_LOAD_RAMP = 2, BOLT_
    external - kinetic change - strain change - Rayleigh - contact. */
 enum { BOLT_LEDGER_EXTERNAL, BOLT_LEDGER_KINETIC, BOLT_LEDGER_STRAIN, BOLT_LEDGER_RAYLEIGH, BOLT_LEDGER_CONTACT, BOLT_LEDGER_BALANCE, BOLT_LEDGER };
 
-typedef struct {
-  BoltOperator   *op;
-  BoltDual       *dual;
-  PetscReal       beta, gamma, dt, tEnd;
-  BoltLoadHistory history;
-  PetscReal       frequency;
-  PetscReal       rampTime; /* -load_ramp_time (0: tEnd) */
-  PetscReal       releaseTime; /* -load_release_time: the release history drops the load after it */
-  PetscReal       sweepStart; /* -load_sweep_start: the stepped sine's first-cycle amplitude, a fraction of the load */
-  PetscBool       monitor;
-  PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
-  PetscBool       quasiStatic;    /* -ts_quasistatic: steps without inertia or damping */
-  PetscBool       calibratePreload;
-  PetscReal       preloadTarget, preloadScale;
-  PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */
-  Vec             q, v, acc, rhs, work;
-  PetscInt        nsteps, step;
-  PetscReal      *probeTime, *probeValue, *energy;
-  PetscReal      *slipping, *dissipated; /* per step: slipping contact points, energy dissipated by friction so far [J] */
-  PetscReal       stickEnergy0;  /* frictional law: the elastic sticks' energy at the start of the transient [J] */
-  PetscReal      *ledger;     /* per step, BOLT_LEDGER rows of nsteps + 1 (BoltLedger): the energy accounting [J] */
-  PetscReal      *pairForce;  /* per step, BOLT_PAIR_FORCE per contact pair (BoltContactStatePairForces) [N] */
-  Vec             dq;         /* the step's displacement change (energy accounting) */
-  /* M and K times the state: M q, M v, M a, K q, K v, K a, and M v, K v of the step's start
-     (BoltNewmarkProductsStep) */
-  Vec             Mq, Mv, Ma, Kq, Kv, Ka, MvOld, KvOld;
-  PetscInt        snapshotEvery, nsnap;
-  Vec            *snap;
-  PetscReal      *snapTime;
-  unsigned char  *snapCodes;  /* per snapshot, each local contact point's state (BoltContactStatePointCodes) */
-  PetscReal       tOnline;
-  PetscReal       staticOuter, staticInner;
-  PetscInt        staticFactorizations, staticSolves;
-  /* checkpoints (checkpoint.c): <checkpointBase>-fom.ckpt.h5 / -rom.ckpt.h5 */
-  PetscInt        checkpointEvery;  /* write one every this many steps (0: never) */
-  char            checkpointBase[PETSC_MAX_PATH_LEN];
-  PetscBool       restart;          /* continue from the checkpoint instead of step 0 */
-  PetscReal       tOnlineBefore;    /* online time spent before the restart */
-  PetscReal       tCheckpoint;      /* time spent writing checkpoints (not online work) */
-} BoltNewmark;
+typedef struct _n_BoltNewmark BoltNewmark;
 
 PetscErrorCode BoltNewmarkCreate(BoltOperator *, BoltNewmark **);
 PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *);
@@ -487,6 +448,19 @@ PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
 PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 PetscErrorCode BoltNewmarkKeepGivenPreload(BoltNewmark *);
+PetscErrorCode BoltNewmarkSetPreloadTarget(BoltNewmark *, PetscReal);
+/* newmark_results.c: what a run hands the rest of the program (read-only) */
+typedef enum { BOLT_HISTORY_TIME, BOLT_HISTORY_PROBE, BOLT_HISTORY_ENERGY, BOLT_HISTORY_SLIPPING, BOLT_HISTORY_DISSIPATED, BOLT_HISTORY_LEDGER, BOLT_HISTORY_PAIR_FORCE } BoltHistory;
+PetscErrorCode BoltNewmarkGetHistory(BoltNewmark *, BoltHistory, PetscInt *, const PetscReal **);
+PetscErrorCode BoltNewmarkGetSnapshots(BoltNewmark *, PetscInt *, Vec **, const PetscReal **, const unsigned char **);
+PetscErrorCode BoltNewmarkGetModel(BoltNewmark *, BoltOperator **, BoltDual **, Vec *);
+PetscErrorCode BoltNewmarkGetTiming(BoltNewmark *, PetscReal *, PetscReal *);
+PetscErrorCode BoltNewmarkGetStaticSolve(BoltNewmark *, PetscReal *, PetscReal *);
+PetscErrorCode BoltNewmarkGetLoad(BoltNewmark *, BoltLoadHistory *, PetscReal *);
+PetscErrorCode BoltNewmarkSetCheckpointBase(BoltNewmark *, const char[]);
+PetscErrorCode BoltNewmarkGetCheckpoint(BoltNewmark *, const char *[], PetscInt *);
+PetscErrorCode BoltNewmarkPreloadSummaryWrite(BoltNewmark *, BoltJSON *);
+PetscErrorCode BoltNewmarkSummaryWrite(BoltNewmark *, BoltJSON *, PetscBool);
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);
 PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *);
 

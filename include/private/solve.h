@@ -52,4 +52,45 @@ struct BoltDual_s {
   PetscReal       worstPenetration, worstTension, worstCompression, worstProduct;
 };
 
+struct _n_BoltNewmark {
+  BoltOperator   *op;
+  BoltDual       *dual;
+  PetscReal       beta, gamma, dt, tEnd;
+  BoltLoadHistory history;
+  PetscReal       frequency;
+  PetscReal       rampTime; /* -load_ramp_time (0: tEnd) */
+  PetscReal       releaseTime; /* -load_release_time: the release history drops the load after it */
+  PetscReal       sweepStart; /* -load_sweep_start: the stepped sine's first-cycle amplitude, a fraction of the load */
+  PetscBool       monitor;
+  PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
+  PetscBool       quasiStatic;    /* -ts_quasistatic: steps without inertia or damping */
+  PetscBool       calibratePreload;
+  PetscReal       preloadTarget, preloadScale;
+  PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */
+  Vec             q, v, acc, rhs, work;
+  PetscInt        nsteps, step;
+  PetscReal      *probeTime, *probeValue, *energy;
+  PetscReal      *slipping, *dissipated; /* per step: slipping contact points, energy dissipated by friction so far [J] */
+  PetscReal       stickEnergy0;  /* frictional law: the elastic sticks' energy at the start of the transient [J] */
+  PetscReal      *ledger;     /* per step, BOLT_LEDGER rows of nsteps + 1 (BoltLedger): the energy accounting [J] */
+  PetscReal      *pairForce;  /* per step, BOLT_PAIR_FORCE per contact pair (BoltContactStatePairForces) [N] */
+  Vec             dq;         /* the step's displacement change (energy accounting) */
+  /* M and K times the state: M q, M v, M a, K q, K v, K a, and M v, K v of the step's start
+     (BoltNewmarkProductsStep) */
+  Vec             Mq, Mv, Ma, Kq, Kv, Ka, MvOld, KvOld;
+  PetscInt        snapshotEvery, nsnap;
+  Vec            *snap;
+  PetscReal      *snapTime;
+  unsigned char  *snapCodes;  /* per snapshot, each local contact point's state (BoltContactStatePointCodes) */
+  PetscReal       tOnline;
+  PetscReal       staticOuter, staticInner;
+  PetscInt        staticFactorizations, staticSolves;
+  /* checkpoints (checkpoint.c): <checkpointBase>-fom.ckpt.h5 / -rom.ckpt.h5 */
+  PetscInt        checkpointEvery;  /* write one every this many steps (0: never) */
+  char            checkpointBase[PETSC_MAX_PATH_LEN];
+  PetscBool       restart;          /* continue from the checkpoint instead of step 0 */
+  PetscReal       tOnlineBefore;    /* online time spent before the restart */
+  PetscReal       tCheckpoint;      /* time spent writing checkpoints (not online work) */
+};
+
 #endif

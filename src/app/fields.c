@@ -22,21 +22,33 @@ static PetscErrorCode FieldsFinalContactState(BoltOutput *h5, BoltMesh *mesh, Bo
    forces and, under friction, the slipping points and the dissipated energy. */
 static PetscErrorCode FieldsHistories(BoltOutput *h5, const char model[], BoltNewmark *nm)
 {
-  const char    *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
-  const PetscInt N                 = nm->nsteps + 1;
-  char           group[32], ledger[64];
+  const char      *rows[BOLT_LEDGER] = {"external_work", "kinetic", "strain", "rayleigh", "contact_work", "balance"};
+  const PetscReal *t, *probe, *energy, *L, *P;
+  PetscInt         N;
+  BoltOperator    *op;
+  char             group[32], ledger[64];
 
   PetscFunctionBeginUser;
+  PetscCall(BoltNewmarkGetModel(nm, &op, NULL, NULL));
+  PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_TIME, &N, &t));
+  N++; /* the start and every step */
+  PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_PROBE, NULL, &probe));
+  PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_ENERGY, NULL, &energy));
+  PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_LEDGER, NULL, &L));
+  PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_PAIR_FORCE, NULL, &P));
   PetscCall(PetscSNPrintf(group, sizeof(group), "/%s", model));
   PetscCall(PetscSNPrintf(ledger, sizeof(ledger), "/%s/energy_accounting", model));
-  PetscCall(BoltOutputSeries(h5, group, "time", N, nm->probeTime));
-  PetscCall(BoltOutputSeries(h5, group, "probe", N, nm->probeValue));
-  PetscCall(BoltOutputSeries(h5, group, "energy", N, nm->energy));
-  for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(h5, ledger, rows[r], N, &nm->ledger[r * N]));
-  PetscCall(BoltOutputPairForces(h5, group, nm->op->contact, N, nm->pairForce));
-  if (BoltContactStateHasFriction(nm->op->state)) {
-    PetscCall(BoltOutputSeries(h5, group, "slipping", N, nm->slipping));
-    PetscCall(BoltOutputSeries(h5, group, "dissipated", N, nm->dissipated));
+  PetscCall(BoltOutputSeries(h5, group, "time", N, t));
+  PetscCall(BoltOutputSeries(h5, group, "probe", N, probe));
+  PetscCall(BoltOutputSeries(h5, group, "energy", N, energy));
+  for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(h5, ledger, rows[r], N, &L[r * N]));
+  PetscCall(BoltOutputPairForces(h5, group, op->contact, N, P));
+  if (BoltContactStateHasFriction(op->state)) {
+    const PetscReal *slipping, *dissipated;
+    PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_SLIPPING, NULL, &slipping));
+    PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_DISSIPATED, NULL, &dissipated));
+    PetscCall(BoltOutputSeries(h5, group, "slipping", N, slipping));
+    PetscCall(BoltOutputSeries(h5, group, "dissipated", N, dissipated));
   }
   PetscFunctionReturn(0);
 }
@@ -45,15 +57,23 @@ static PetscErrorCode FieldsHistories(BoltOutput *h5, const char model[], BoltNe
    <prefix>snapshot_<i> and, with contact, <prefix>contact_state_<i>, and their temporal series. */
 static PetscErrorCode FieldsSnapshots(BoltOutput *h5, BoltMesh *mesh, const char prefix[], BoltNewmark *nm, BoltROM *rom, Vec u)
 {
-  BoltContactSet *c = nm->op->contact;
+  BoltOperator        *op;
+  BoltContactSet      *c;
+  PetscInt             nsnap;
+  Vec                 *snap;
+  const PetscReal     *time;
+  const unsigned char *codes;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < nm->nsnap; i++) {
-    if (rom) PetscCall(BoltROMExpand(rom, nm->snap[i], u));
-    PetscCall(BoltOutputSnapshot(h5, mesh, prefix, i, rom ? u : nm->snap[i]));
+  PetscCall(BoltNewmarkGetModel(nm, &op, NULL, NULL));
+  PetscCall(BoltNewmarkGetSnapshots(nm, &nsnap, &snap, &time, &codes));
+  c = op->contact;
+  for (PetscInt i = 0; i < nsnap; i++) {
+    if (rom) PetscCall(BoltROMExpand(rom, snap[i], u));
+    PetscCall(BoltOutputSnapshot(h5, mesh, prefix, i, rom ? u : snap[i]));
   }
-  if (c->ngpGlobal) PetscCall(BoltOutputSnapshotStates(h5, mesh, prefix, c, nm->nsnap, nm->snapCodes));
-  PetscCall(BoltOutputSnapshotSeries(h5, prefix, nm->nsnap, nm->snapTime, c->ngpGlobal ? PETSC_TRUE : PETSC_FALSE));
+  if (c->ngpGlobal) PetscCall(BoltOutputSnapshotStates(h5, mesh, prefix, c, nsnap, codes));
+  PetscCall(BoltOutputSnapshotSeries(h5, prefix, nsnap, time, c->ngpGlobal ? PETSC_TRUE : PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -62,27 +82,31 @@ static PetscErrorCode FieldsSnapshots(BoltOutput *h5, BoltMesh *mesh, const char
    FOM's snapshots keep their names (snapshot_<i>, <name>-series.xmf); the ROM's take rom_. */
 static PetscErrorCode FieldsRun(BoltOutput *h5, const BoltSummary *s, const char model[], BoltNewmark *nm, BoltROM *rom)
 {
-  BoltMesh *mesh = s->mesh;
-  PetscBool whole = PETSC_TRUE;
-  Vec       u;
-  char      name[BOLTROM_NAME_LEN];
+  BoltMesh     *mesh  = s->mesh;
+  PetscBool     whole = PETSC_TRUE;
+  Vec           u, q;
+  BoltOperator *op;
+  PetscInt      nsnap;
+  char          name[BOLTROM_NAME_LEN];
 
   PetscFunctionBeginUser;
+  PetscCall(BoltNewmarkGetModel(nm, &op, NULL, &q));
+  PetscCall(BoltNewmarkGetSnapshots(nm, &nsnap, NULL, NULL, NULL));
   if (rom) PetscCall(BoltROMBasisEnsure(rom, mesh, s->loads->load, &whole)); /* else it says why not */
   PetscCall(VecDuplicate(s->loads->load, &u));
   if (whole) {
     PetscCall(PetscSNPrintf(name, sizeof(name), "%s_final_displacement", model));
-    if (rom) PetscCall(BoltROMExpand(rom, nm->q, u));
-    PetscCall(BoltOutputVertexField(h5, mesh, rom ? u : nm->q, name));
+    if (rom) PetscCall(BoltROMExpand(rom, q, u));
+    PetscCall(BoltOutputVertexField(h5, mesh, rom ? u : q, name));
   }
   if (!rom) { /* the FOM's nodal contact forces */
-    PetscCall(BoltContactStateNodalForces(nm->op->state, u));
+    PetscCall(BoltContactStateNodalForces(op->state, u));
     PetscCall(BoltOutputVertexField(h5, mesh, u, "fom_final_contact_force"));
   }
   PetscCall(PetscSNPrintf(name, sizeof(name), "%s_final_contact_state", model));
-  PetscCall(FieldsFinalContactState(h5, mesh, nm->op->state, name));
+  PetscCall(FieldsFinalContactState(h5, mesh, op->state, name));
   PetscCall(FieldsHistories(h5, model, nm));
-  if (nm->nsnap && whole) PetscCall(FieldsSnapshots(h5, mesh, rom ? "rom_" : "", nm, rom, u));
+  if (nsnap && whole) PetscCall(FieldsSnapshots(h5, mesh, rom ? "rom_" : "", nm, rom, u));
   PetscCall(VecDestroy(&u));
   PetscFunctionReturn(0);
 }

@@ -20,12 +20,18 @@
 static const char *const boltLoadHistoryNames[] = {"step", "sine", "ramp", "release", "sweep"};
 
 /* The load's time history and frequency (0 where it has none) of the run's transient. */
-static void BoltRunLoadHistory(const BoltSummary *s, const char **name, PetscReal *frequency)
+static PetscErrorCode BoltRunLoadHistory(const BoltSummary *s, const char **name, PetscReal *frequency)
 {
-  const BoltNewmark *nm = s->fomRun ? s->fomRun : s->romRun;
+  BoltNewmark    *nm = s->fomRun ? s->fomRun : s->romRun;
+  BoltLoadHistory history;
 
-  *name      = nm ? boltLoadHistoryNames[nm->history] : "none";
-  *frequency = nm && (nm->history == BOLT_LOAD_SINE || nm->history == BOLT_LOAD_SWEEP) ? nm->frequency : 0;
+  PetscFunctionBeginUser;
+  *name      = "none";
+  *frequency = 0;
+  if (!nm) PetscFunctionReturn(0);
+  PetscCall(BoltNewmarkGetLoad(nm, &history, frequency));
+  *name = boltLoadHistoryNames[history];
+  PetscFunctionReturn(0);
 }
 
 /* The Coulomb coefficient of each pair, 0 for a frictionless law. */
@@ -44,7 +50,7 @@ PetscErrorCode BoltSummaryWriteAttributes(const BoltSummary *s, PetscViewer v)
   PetscReal             frequency, mu[BOLTROM_MAX_PAIRS];
 
   PetscFunctionBeginUser;
-  BoltRunLoadHistory(s, &history, &frequency);
+  PetscCall(BoltRunLoadHistory(s, &history, &frequency));
   BoltRunFriction(c, mu);
   for (PetscInt p = 0; p < c->npairs; p++) names[p] = c->pairName[p];
   PetscCall(PetscOptionsGetAll(NULL, &options));
@@ -72,7 +78,7 @@ PetscErrorCode BoltSummaryWriteLoad(BoltJSON *j, const BoltSummary *s)
   PetscReal             frequency, mu[BOLTROM_MAX_PAIRS];
 
   PetscFunctionBeginUser;
-  BoltRunLoadHistory(s, &history, &frequency);
+  PetscCall(BoltRunLoadHistory(s, &history, &frequency));
   BoltRunFriction(c, mu);
   PetscCall(BoltJSONString(j, "probe_group", l->probeGroup));
   PetscCall(BoltJSONInt(j, "probe_component", l->probeComponent));

@@ -143,15 +143,20 @@ PetscErrorCode BoltPreflightSetFromOptions(MPI_Comm comm, const BoltRunOptions *
 {
   BoltOperator stub = {0}; /* the time integrator's options need no model */
   BoltNewmark *nm;
+  const char  *base;
+  PetscInt     every;
+  char         name[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBeginUser;
   stub.comm = comm; /* the FOM's and the ROM's integrators read the same options */
   stub.name = "FOM";
   PetscCall(PetscStrncpy(stub.prefix, "fom_", sizeof(stub.prefix)));
   PetscCall(BoltNewmarkCreate(&stub, &nm));
-  PetscCall(PetscSNPrintf(nm->checkpointBase, sizeof(nm->checkpointBase), "%s/%s", o->outputDir, o->outputName));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", o->outputDir, o->outputName));
+  PetscCall(BoltNewmarkSetCheckpointBase(nm, name));
   PetscCall(BoltNewmarkSetFromOptions(nm));
-  PetscCall(PetscStrncpy(checkpointBase, nm->checkpointEvery > 0 ? nm->checkpointBase : "", PETSC_MAX_PATH_LEN));
+  PetscCall(BoltNewmarkGetCheckpoint(nm, &base, &every));
+  PetscCall(PetscStrncpy(checkpointBase, every > 0 ? base : "", PETSC_MAX_PATH_LEN));
   PetscCall(BoltNewmarkDestroy(&nm));
   PetscCall(BoltDirectSolverSetFromOptions(comm, "static_", PETSC_FALSE, MATSOLVERMUMPS));
   PetscCall(BoltModalSetFromOptions(comm, o->nev, "modal_"));

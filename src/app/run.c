@@ -43,12 +43,15 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
 /* A model's time integrator, set up (checkpoints beside the results unless -checkpoint_file). */
 static PetscErrorCode BoltRunNewmarkCreate(BoltRun *r, BoltOperator *op, BoltNewmark **nm)
 {
+  char name[PETSC_MAX_PATH_LEN];
+
   PetscFunctionBeginUser;
   PetscCall(BoltOperatorView(op, PETSC_VIEWER_STDOUT_(r->comm)));
   PetscCall(BoltNewmarkCreate(op, nm));
-  PetscCall(PetscSNPrintf((*nm)->checkpointBase, sizeof((*nm)->checkpointBase), "%s/%s", r->opt.outputDir, r->opt.outputName));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", r->opt.outputDir, r->opt.outputName));
+  PetscCall(BoltNewmarkSetCheckpointBase(*nm, name));
   PetscCall(BoltNewmarkSetFromOptions(*nm));
-  (*nm)->preloadTarget = r->loads->hasPreload ? r->loads->preloadForce : 0;
+  PetscCall(BoltNewmarkSetPreloadTarget(*nm, r->loads->hasPreload ? r->loads->preloadForce : 0));
   PetscCall(BoltNewmarkSetUp(*nm));
   PetscFunctionReturn(0);
 }
@@ -108,7 +111,11 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltNewmarkPreload(r->fomNm));
   PetscCall(PetscLogStagePop());
   PetscCall(BoltContactStateNormalForcePerPair(r->fomOp->state, s->preloadForce));
-  PetscCall(PetscPrintf(r->comm, "Preload %g N: static contact solve in %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations\n", (double)r->loads->preloadForce, (PetscInt)r->fomNm->staticOuter, (PetscInt)r->fomNm->staticInner));
+  {
+    PetscReal outer, inner;
+    PetscCall(BoltNewmarkGetStaticSolve(r->fomNm, &outer, &inner));
+    PetscCall(PetscPrintf(r->comm, "Preload %g N: static contact solve in %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations\n", (double)r->loads->preloadForce, (PetscInt)outer, (PetscInt)inner));
+  }
   if (contact->npairs <= 6) { /* a line each would be long for many pairs: then their range (the summary has each) */
     PetscCall(PetscPrintf(r->comm, "  normal force per pair [N]:"));
     for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(PetscPrintf(r->comm, " %s %.1f", contact->pairName[p], (double)s->preloadForce[p]));
@@ -125,8 +132,15 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltContactStateTractionStats(r->fomOp->state, &s->tractionStats[0], &s->tractionStats[1], &s->tractionStats[2]));
   s->preloadActive      = r->fomOp->state->nactive;
   PetscCall(BoltContactStateCountReclosed(r->fomOp->state, &s->preloadSliding, NULL));
-  PetscCall(BoltDualGetLastConvergence(r->fomNm->dual, &s->preloadPenetration, &s->preloadChange));
-  if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, r->fomNm->q, r->fomNm->staticOuter, r->fomNm->staticInner, &r->fomPreload)); /* the ROM's offline phase starts from it */
+  {
+    BoltDual *dual;
+    Vec       q;
+    PetscReal outer, inner;
+    PetscCall(BoltNewmarkGetModel(r->fomNm, NULL, &dual, &q));
+    PetscCall(BoltNewmarkGetStaticSolve(r->fomNm, &outer, &inner));
+    PetscCall(BoltDualGetLastConvergence(dual, &s->preloadPenetration, &s->preloadChange));
+    if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, q, outer, inner, &r->fomPreload)); /* the ROM's offline phase starts from it */
+  }
   PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));
   PetscCall(BoltNewmarkRun(r->fomNm));
   PetscCall(PetscLogStagePop());
@@ -148,7 +162,12 @@ PetscErrorCode BoltRunROM(BoltRun *r)
 
   PetscFunctionBeginUser;
   /* the FOM's preloaded state and snapshots (for -rom_snapshot_modes), if it ran */
-  PetscCall(BoltROMSetTraining(r->rom, r->fomPreload, r->fomNm ? r->fomNm->nsnap : 0, r->fomNm ? r->fomNm->snap : NULL));
+  {
+    PetscInt nsnap = 0;
+    Vec     *snap  = NULL;
+    if (r->fomNm) PetscCall(BoltNewmarkGetSnapshots(r->fomNm, &nsnap, &snap, NULL, NULL));
+    PetscCall(BoltROMSetTraining(r->rom, r->fomPreload, nsnap, snap));
+  }
   PetscCall(BoltROMSetUp(r->rom, r->asmb, r->contact, r->loads));
   PetscCall(BoltPreloadStateDestroy(&r->fomPreload));
   PetscCall(BoltROMOperatorCreate(r->rom, &r->romOp));
@@ -165,8 +184,15 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   PetscCall(PetscLogStagePop());
   PetscCall(BoltNewmarkView(r->romNm, PETSC_VIEWER_STDOUT_(r->comm)));
   if (r->fomNm) {
-    PetscCall(BoltHistoryErrors(r->fomNm->nsteps + 1, r->fomNm->probeValue, r->romNm->probeValue, &s->errL2, &s->errMean));
-    PetscCall(PetscPrintf(r->comm, "ROM against FOM at '%s': e_L2 %.4e, mean relative error %.4e; speedup (online) %.1f\n", r->loads->probeGroup, (double)s->errL2, (double)s->errMean, (double)(r->fomNm->tOnline / r->romNm->tOnline)));
+    const PetscReal *pf, *pr;
+    PetscInt         n;
+    PetscReal        tf, tr;
+    PetscCall(BoltNewmarkGetHistory(r->fomNm, BOLT_HISTORY_PROBE, &n, &pf));
+    PetscCall(BoltNewmarkGetHistory(r->romNm, BOLT_HISTORY_PROBE, NULL, &pr));
+    PetscCall(BoltNewmarkGetTiming(r->fomNm, NULL, &tf));
+    PetscCall(BoltNewmarkGetTiming(r->romNm, NULL, &tr));
+    PetscCall(BoltHistoryErrors(n + 1, pf, pr, &s->errL2, &s->errMean));
+    PetscCall(PetscPrintf(r->comm, "ROM against FOM at '%s': e_L2 %.4e, mean relative error %.4e; speedup (online) %.1f\n", r->loads->probeGroup, (double)s->errL2, (double)s->errMean, (double)(tf / tr)));
   }
   s->rom    = r->rom;
   s->romRun = r->romNm;

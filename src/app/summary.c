@@ -3,65 +3,6 @@
    file of its fields and histories is fields.c's. */
 #include "private/app.h"
 
-/* The figures of a Newmark run that the FOM and the ROM share; full (the FOM's) adds the time
-   step, the largest iteration counts, the contact points and the probe's range. */
-static PetscErrorCode SummaryNewmarkRun(BoltJSON *j, const BoltNewmark *nm, PetscBool full)
-{
-  PetscFunctionBeginUser;
-  PetscCall(BoltJSONInt(j, "steps", nm->nsteps));
-  if (full) PetscCall(BoltJSONReal(j, "dt", nm->dt));
-  PetscCall(BoltJSONReal(j, "online_s", nm->tOnline));
-  PetscCall(BoltDualSummaryWrite(nm->dual, j, full));
-  if (full) {
-    PetscInt nsliding, nanchored;
-    PetscCall(BoltJSONInt(j, "active_points", nm->op->state->nactive));
-    PetscCall(BoltContactStateCountReclosed(nm->op->state, &nsliding, &nanchored));
-    PetscCall(BoltJSONInt(j, "sliding_points", nsliding));
-    PetscCall(BoltJSONInt(j, "reclosed_points", nanchored));
-    PetscCall(BoltJSONInt(j, "contact_points", nm->op->contact->ngpGlobal));
-  }
-  PetscCall(BoltJSONReal(j, "probe_final", nm->probeValue[nm->nsteps]));
-  if (full) {
-    PetscReal mn = 0, mx = 0;
-    for (PetscInt i = 0; i <= nm->nsteps; i++) {
-      mn = PetscMin(mn, nm->probeValue[i]);
-      mx = PetscMax(mx, nm->probeValue[i]);
-    }
-    PetscCall(BoltJSONReal(j, "probe_min", mn));
-    PetscCall(BoltJSONReal(j, "probe_max", mx));
-  }
-  if (full && BoltContactStateLambdaIsTraction(nm->op->state)) {
-    /* the energy accounting at the end, and its balance's largest value over the run relative
-       to the largest term (the strict laws' loop measures the contact work) */
-    const PetscReal *L = nm->ledger;
-    const PetscInt   N = nm->nsteps + 1, e = nm->nsteps;
-    PetscReal        worst = 0, scale = 0;
-    for (PetscInt i = 0; i < N; i++) {
-      worst = PetscMax(worst, PetscAbsReal(L[BOLT_LEDGER_BALANCE * N + i]));
-      scale = PetscMax(scale, PetscAbsReal(L[BOLT_LEDGER_EXTERNAL * N + i]));
-      scale = PetscMax(scale, L[BOLT_LEDGER_KINETIC * N + i]);
-      scale = PetscMax(scale, PetscAbsReal(L[BOLT_LEDGER_STRAIN * N + i] - L[BOLT_LEDGER_STRAIN * N]));
-      scale = PetscMax(scale, L[BOLT_LEDGER_RAYLEIGH * N + i]);
-      scale = PetscMax(scale, PetscAbsReal(L[BOLT_LEDGER_CONTACT * N + i]));
-    }
-    PetscCall(BoltJSONBeginObject(j, "energy"));
-    PetscCall(BoltJSONReal(j, "external_work", L[BOLT_LEDGER_EXTERNAL * N + e]));
-    PetscCall(BoltJSONReal(j, "kinetic_change", L[BOLT_LEDGER_KINETIC * N + e] - L[BOLT_LEDGER_KINETIC * N]));
-    PetscCall(BoltJSONReal(j, "strain_change", L[BOLT_LEDGER_STRAIN * N + e] - L[BOLT_LEDGER_STRAIN * N]));
-    PetscCall(BoltJSONReal(j, "rayleigh", L[BOLT_LEDGER_RAYLEIGH * N + e]));
-    PetscCall(BoltJSONReal(j, "contact_work", L[BOLT_LEDGER_CONTACT * N + e]));
-    if (BoltContactStateHasFriction(nm->op->state)) {
-      PetscReal stick;
-      PetscCall(BoltContactStateStickEnergy(nm->op->state, &stick));
-      PetscCall(BoltJSONReal(j, "friction", nm->dissipated[e]));
-      PetscCall(BoltJSONReal(j, "stick_energy_change", stick - nm->stickEnergy0));
-    }
-    PetscCall(BoltJSONReal(j, "balance_rel", scale > 0 ? worst / scale : 0));
-    PetscCall(BoltJSONEndObject(j));
-  }
-  PetscFunctionReturn(0);
-}
-
 /* An object of one value per named pair or part: the integers vi, or else the reals vr. */
 static PetscErrorCode SummaryNamed(BoltJSON *j, const char key[], PetscInt n, const char names[][BOLTROM_NAME_LEN], const PetscInt vi[], const PetscReal vr[])
 {
@@ -142,17 +83,12 @@ static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
 /* The FOM's preloaded state and its run. */
 static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
 {
-  const BoltNewmark    *nm      = s->fomRun;
   const BoltContactSet *contact = s->contact;
 
   PetscFunctionBeginUser;
   PetscCall(BoltJSONBeginObject(j, "preload"));
   PetscCall(BoltJSONReal(j, "force", s->loads->preloadForce));
-  PetscCall(BoltJSONReal(j, "layer_force_scale", nm->preloadScale));
-  PetscCall(BoltJSONReal(j, "outer", nm->staticOuter));
-  PetscCall(BoltJSONReal(j, "inner", nm->staticInner));
-  PetscCall(BoltJSONInt(j, "factorizations", nm->staticFactorizations));
-  PetscCall(BoltJSONInt(j, "solves", nm->staticSolves));
+  PetscCall(BoltNewmarkPreloadSummaryWrite(s->fomRun, j));
   PetscCall(BoltJSONReal(j, "penetration_max", s->preloadPenetration));
   PetscCall(BoltJSONReal(j, "multiplier_change", s->preloadChange));
   PetscCall(BoltJSONReal(j, "traction_normal_min", s->tractionStats[0]));
@@ -163,7 +99,7 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
   PetscCall(SummaryNamed(j, "normal_force_per_pair", contact->npairs, contact->pairName, NULL, s->preloadForce));
   PetscCall(BoltJSONEndObject(j));
   PetscCall(BoltJSONBeginObject(j, "fom"));
-  PetscCall(SummaryNewmarkRun(j, nm, PETSC_TRUE));
+  PetscCall(BoltNewmarkSummaryWrite(s->fomRun, j, PETSC_TRUE));
   PetscCall(BoltJSONEndObject(j));
   PetscFunctionReturn(0);
 }
@@ -174,12 +110,19 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   PetscFunctionBeginUser;
   PetscCall(BoltJSONBeginObject(j, "rom"));
   PetscCall(BoltROMSummaryWrite(s->rom, j));
-  PetscCall(BoltJSONInt(j, "held_points", s->romRun->op->state->mayChange != NULL));
-  PetscCall(SummaryNewmarkRun(j, s->romRun, PETSC_FALSE));
+  {
+    BoltOperator *op;
+    PetscCall(BoltNewmarkGetModel(s->romRun, &op, NULL, NULL));
+    PetscCall(BoltJSONInt(j, "held_points", op->state->mayChange != NULL));
+  }
+  PetscCall(BoltNewmarkSummaryWrite(s->romRun, j, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));
   PetscCall(BoltJSONEndObject(j));
   if (s->fomRun) {
-    PetscCall(BoltJSONReal(j, "speedup", s->fomRun->tOnline / s->romRun->tOnline));
+    PetscReal tf, tr;
+    PetscCall(BoltNewmarkGetTiming(s->fomRun, NULL, &tf));
+    PetscCall(BoltNewmarkGetTiming(s->romRun, NULL, &tr));
+    PetscCall(BoltJSONReal(j, "speedup", tf / tr));
     PetscCall(BoltJSONBeginObject(j, "errors"));
     PetscCall(BoltJSONBeginObject(j, s->loads->probeGroup));
     PetscCall(BoltJSONReal(j, "e_L2", s->errL2));

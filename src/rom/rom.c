@@ -225,10 +225,13 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal preloadForce)
 {
   BoltContactSet   *c = rom->contact;
-  BoltContactState *s = nm->op->state;
+  BoltContactState *s;
+  BoltOperator     *op;
 
   PetscFunctionBeginUser;
   if (!rom->preloadState) PetscFunctionReturn(0);
+  PetscCall(BoltNewmarkGetModel(nm, &op, NULL, NULL));
+  s = op->state;
   /* The FOM's traction at its preloaded state is lambda0 + P g0 (its penalty P on the residual
      gaps g0 its loop leaves), or lambda0 itself after the strict law's loop (its multipliers are
      already the trial tractions of its last solve); the ROM's penalty is s P, so the frozen

@@ -376,6 +376,14 @@ PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *nm)
   PetscFunctionReturn(0);
 }
 
+/* The bolt's clamp force [N] the static start calibrates the preload layers to (0: none). */
+PetscErrorCode BoltNewmarkSetPreloadTarget(BoltNewmark *nm, PetscReal force)
+{
+  PetscFunctionBeginUser;
+  nm->preloadTarget = force;
+  PetscFunctionReturn(0);
+}
+
 /* The operator's contact state already holds the preloaded state (handed over by another
    model): the static start neither calibrates the preload nor judges that active set again. */
 PetscErrorCode BoltNewmarkKeepGivenPreload(BoltNewmark *nm)
