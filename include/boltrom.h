@@ -317,20 +317,20 @@ void           BoltContactStateTrialOf(const BoltContactState *, PetscInt, const
 PetscErrorCode BoltContactStateElementStiffness(BoltContactState *, PetscInt, PetscReal[576]);
 
 /* ------------------------------------------------------------------ loads.c */
-typedef struct {
-  BoltMesh *mesh;
-  char      loadGroup[BOLTROM_NAME_LEN];
-  PetscReal loadDirection[3], loadForce;
-  char      preloadGroup[2][BOLTROM_NAME_LEN];
-  PetscReal preloadAxis[3], preloadForce;
-  PetscBool hasPreload;
-  Vec       load, preload; /* the load and preload vectors, global layout */
-  Vec       loadUnit;      /* the load pattern of a 1 N force */
-  char      probeGroup[BOLTROM_NAME_LEN]; /* probe: displacement component at this point group */
-  PetscInt  probeComponent;
-  PetscInt  probeDof;               /* global DOF of the probe on its owner, -1 elsewhere */
-  PetscReal probeCoord[3];
-} BoltLoadSet;
+typedef struct _n_BoltLoadSet BoltLoadSet;
+Vec              BoltLoadSetLoad(const BoltLoadSet *);
+Vec              BoltLoadSetLoadUnit(const BoltLoadSet *);
+Vec              BoltLoadSetPreload(const BoltLoadSet *);
+PetscBool        BoltLoadSetHasPreload(const BoltLoadSet *);
+PetscReal        BoltLoadSetPreloadForce(const BoltLoadSet *);
+const char      *BoltLoadSetPreloadGroup(const BoltLoadSet *, PetscInt);
+const char      *BoltLoadSetLoadGroup(const BoltLoadSet *);
+PetscReal        BoltLoadSetLoadForce(const BoltLoadSet *);
+const PetscReal *BoltLoadSetLoadDirection(const BoltLoadSet *);
+const char      *BoltLoadSetProbeGroup(const BoltLoadSet *);
+PetscInt         BoltLoadSetProbeComponent(const BoltLoadSet *);
+PetscInt         BoltLoadSetProbeDof(const BoltLoadSet *);
+const PetscReal *BoltLoadSetProbeCoordinates(const BoltLoadSet *);
 
 PetscErrorCode BoltLoadSetCreate(BoltMesh *, BoltLoadSet **);
 PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *);

@@ -10,4 +10,19 @@ struct _n_BoltAssembler {
   PetscInt   elementsPerPart[BOLTROM_MAX_PARTS];
 };
 
+struct _n_BoltLoadSet {
+  BoltMesh *mesh;
+  char      loadGroup[BOLTROM_NAME_LEN];
+  PetscReal loadDirection[3], loadForce;
+  char      preloadGroup[2][BOLTROM_NAME_LEN];
+  PetscReal preloadAxis[3], preloadForce;
+  PetscBool hasPreload;
+  Vec       load, preload; /* the load and preload vectors, global layout */
+  Vec       loadUnit;      /* the load pattern of a 1 N force */
+  char      probeGroup[BOLTROM_NAME_LEN]; /* probe: displacement component at this point group */
+  PetscInt  probeComponent;
+  PetscInt  probeDof;               /* global DOF of the probe on its owner, -1 elsewhere */
+  PetscReal probeCoord[3];
+};
+
 #endif

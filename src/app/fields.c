@@ -92,8 +92,8 @@ static PetscErrorCode FieldsRun(BoltOutput *h5, const BoltSummary *s, const char
   PetscFunctionBeginUser;
   PetscCall(BoltNewmarkGetModel(nm, &op, NULL, &q));
   PetscCall(BoltNewmarkGetSnapshots(nm, &nsnap, NULL, NULL, NULL));
-  if (rom) PetscCall(BoltROMBasisEnsure(rom, mesh, s->loads->load, &whole)); /* else it says why not */
-  PetscCall(VecDuplicate(s->loads->load, &u));
+  if (rom) PetscCall(BoltROMBasisEnsure(rom, mesh, BoltLoadSetLoad(s->loads), &whole)); /* else it says why not */
+  PetscCall(VecDuplicate(BoltLoadSetLoad(s->loads), &u));
   if (whole) {
     PetscCall(PetscSNPrintf(name, sizeof(name), "%s_final_displacement", model));
     if (rom) PetscCall(BoltROMExpand(rom, q, u));
@@ -123,8 +123,8 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
   PetscCall(BoltOutputOpen(mesh, dir, name, &h5));
   PetscCall(BoltSummaryWriteAttributes(s, h5.viewer));
   if (s->staticSolve) PetscCall(BoltOutputVertexField(&h5, mesh, s->u, "displacement"));
-  PetscCall(BoltOutputVertexField(&h5, mesh, loads->load, "load"));
-  if (loads->hasPreload) PetscCall(BoltOutputVertexField(&h5, mesh, loads->preload, "preload"));
+  PetscCall(BoltOutputVertexField(&h5, mesh, BoltLoadSetLoad(loads), "load"));
+  if (BoltLoadSetHasPreload(loads)) PetscCall(BoltOutputVertexField(&h5, mesh, BoltLoadSetPreload(loads), "preload"));
   if (s->fomRun) PetscCall(FieldsRun(&h5, s, "fom", s->fomRun, NULL));
   if (s->romRun) PetscCall(FieldsRun(&h5, s, "rom", s->romRun, s->rom));
   if (s->x) {

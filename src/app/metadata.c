@@ -55,10 +55,13 @@ PetscErrorCode BoltSummaryWriteAttributes(const BoltSummary *s, PetscViewer v)
   for (PetscInt p = 0; p < c->npairs; p++) names[p] = c->pairName[p];
   PetscCall(PetscOptionsGetAll(NULL, &options));
   PetscCall(BoltHDF5AttributeString(v, "units", "SI: m, kg, s, N, Pa"));
-  PetscCall(BoltHDF5AttributeString(v, "probe_group", l->probeGroup));
-  PetscCall(BoltHDF5AttributeInt(v, "probe_component", l->probeComponent));
-  PetscCall(BoltHDF5AttributeReals(v, "load_force", -1, &l->loadForce));
-  PetscCall(BoltHDF5AttributeReals(v, "load_direction", 3, l->loadDirection));
+  PetscCall(BoltHDF5AttributeString(v, "probe_group", BoltLoadSetProbeGroup(l)));
+  PetscCall(BoltHDF5AttributeInt(v, "probe_component", BoltLoadSetProbeComponent(l)));
+  {
+    const PetscReal force = BoltLoadSetLoadForce(l);
+    PetscCall(BoltHDF5AttributeReals(v, "load_force", -1, &force));
+  }
+  PetscCall(BoltHDF5AttributeReals(v, "load_direction", 3, BoltLoadSetLoadDirection(l)));
   PetscCall(BoltHDF5AttributeString(v, "load_history", history));
   PetscCall(BoltHDF5AttributeReals(v, "load_frequency", -1, &frequency));
   PetscCall(BoltHDF5AttributeString(v, "contact_law", c->lawType));
@@ -80,10 +83,10 @@ PetscErrorCode BoltSummaryWriteLoad(BoltJSON *j, const BoltSummary *s)
   PetscFunctionBeginUser;
   PetscCall(BoltRunLoadHistory(s, &history, &frequency));
   BoltRunFriction(c, mu);
-  PetscCall(BoltJSONString(j, "probe_group", l->probeGroup));
-  PetscCall(BoltJSONInt(j, "probe_component", l->probeComponent));
-  PetscCall(BoltJSONReal(j, "load_force", l->loadForce));
-  PetscCall(BoltJSONRealArray(j, "load_direction", 3, l->loadDirection));
+  PetscCall(BoltJSONString(j, "probe_group", BoltLoadSetProbeGroup(l)));
+  PetscCall(BoltJSONInt(j, "probe_component", BoltLoadSetProbeComponent(l)));
+  PetscCall(BoltJSONReal(j, "load_force", BoltLoadSetLoadForce(l)));
+  PetscCall(BoltJSONRealArray(j, "load_direction", 3, BoltLoadSetLoadDirection(l)));
   PetscCall(BoltJSONString(j, "load_history", history));
   PetscCall(BoltJSONReal(j, "load_frequency", frequency));
   PetscCall(BoltJSONBeginObject(j, "friction_per_pair"));

@@ -51,7 +51,7 @@ static PetscErrorCode BoltRunNewmarkCreate(BoltRun *r, BoltOperator *op, BoltNew
   PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", r->opt.outputDir, r->opt.outputName));
   PetscCall(BoltNewmarkSetCheckpointBase(*nm, name));
   PetscCall(BoltNewmarkSetFromOptions(*nm));
-  PetscCall(BoltNewmarkSetPreloadTarget(*nm, r->loads->hasPreload ? r->loads->preloadForce : 0));
+  PetscCall(BoltNewmarkSetPreloadTarget(*nm, BoltLoadSetHasPreload(r->loads) ? BoltLoadSetPreloadForce(r->loads) : 0));
   PetscCall(BoltNewmarkSetUp(*nm));
   PetscFunctionReturn(0);
 }
@@ -74,12 +74,12 @@ PetscErrorCode BoltRunTied(BoltRun *r)
   if (r->opt.staticSolve) {
     PetscCall(PetscLogStagePush(BOLT_STAGE_STATIC));
     PetscCall(PetscTime(&ts));
-    PetscCall(BoltStaticSolve(r->Ktied, r->loads->load, r->u, "static_"));
+    PetscCall(BoltStaticSolve(r->Ktied, BoltLoadSetLoad(r->loads), r->u, "static_"));
     PetscCall(PetscTime(&te));
     s->tStatic = te - ts;
     PetscCall(BoltLoadSetProbe(r->loads, r->u, &s->probe));
     PetscCall(PetscLogStagePop());
-    PetscCall(PetscPrintf(r->comm, "Static (tied): probe u_%c at '%s' = %.10e m under %g N (%.2f s)\n", "xyz"[r->loads->probeComponent], r->loads->probeGroup, (double)s->probe, (double)r->loads->loadForce, (double)s->tStatic));
+    PetscCall(PetscPrintf(r->comm, "Static (tied): probe u_%c at '%s' = %.10e m under %g N (%.2f s)\n", "xyz"[BoltLoadSetProbeComponent(r->loads)], BoltLoadSetProbeGroup(r->loads), (double)s->probe, (double)BoltLoadSetLoadForce(r->loads), (double)s->tStatic));
   }
   if (r->opt.exportDir[0]) PetscCall(BoltExportTied(r->opt.exportDir, r->Ktied, M));
   if (r->opt.nev > 0) {
@@ -114,7 +114,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   {
     PetscReal outer, inner;
     PetscCall(BoltNewmarkGetStaticSolve(r->fomNm, &outer, &inner));
-    PetscCall(PetscPrintf(r->comm, "Preload %g N: static contact solve in %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations\n", (double)r->loads->preloadForce, (PetscInt)outer, (PetscInt)inner));
+    PetscCall(PetscPrintf(r->comm, "Preload %g N: static contact solve in %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations\n", (double)BoltLoadSetPreloadForce(r->loads), (PetscInt)outer, (PetscInt)inner));
   }
   if (contact->npairs <= 6) { /* a line each would be long for many pairs: then their range (the summary has each) */
     PetscCall(PetscPrintf(r->comm, "  normal force per pair [N]:"));
@@ -175,7 +175,7 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   if (r->opt.romCheckS0) PetscCall(BoltROMCheckAtS0(r->rom, r->romOp, r->asmb, r->contact, r->loads, &s->romCheckError));
   if (r->opt.exportDir[0]) PetscCall(BoltExportReduced(r->opt.exportDir, r->rom, r->romOp));
   PetscCall(BoltRunNewmarkCreate(r, r->romOp, &r->romNm));
-  PetscCall(BoltROMSetPreloadState(r->rom, r->romNm, r->loads->preloadForce));
+  PetscCall(BoltROMSetPreloadState(r->rom, r->romNm, BoltLoadSetPreloadForce(r->loads)));
   PetscCall(PetscLogStagePush(BOLT_STAGE_PRELOAD));
   PetscCall(BoltNewmarkPreload(r->romNm));
   PetscCall(PetscLogStagePop());
@@ -192,7 +192,7 @@ PetscErrorCode BoltRunROM(BoltRun *r)
     PetscCall(BoltNewmarkGetTiming(r->fomNm, NULL, &tf));
     PetscCall(BoltNewmarkGetTiming(r->romNm, NULL, &tr));
     PetscCall(BoltHistoryErrors(n + 1, pf, pr, &s->errL2, &s->errMean));
-    PetscCall(PetscPrintf(r->comm, "ROM against FOM at '%s': e_L2 %.4e, mean relative error %.4e; speedup (online) %.1f\n", r->loads->probeGroup, (double)s->errL2, (double)s->errMean, (double)(tf / tr)));
+    PetscCall(PetscPrintf(r->comm, "ROM against FOM at '%s': e_L2 %.4e, mean relative error %.4e; speedup (online) %.1f\n", BoltLoadSetProbeGroup(r->loads), (double)s->errL2, (double)s->errMean, (double)(tf / tr)));
   }
   s->rom    = r->rom;
   s->romRun = r->romNm;

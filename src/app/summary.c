@@ -62,10 +62,10 @@ static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
   PetscFunctionBeginUser;
   if (s->staticSolve) {
     PetscCall(BoltJSONBeginObject(j, "static"));
-    PetscCall(BoltJSONReal(j, "load_force", loads->loadForce));
-    PetscCall(BoltJSONString(j, "probe_group", loads->probeGroup));
-    PetscCall(BoltJSONInt(j, "probe_component", loads->probeComponent));
-    PetscCall(BoltJSONRealArray(j, "probe_coordinates", 3, loads->probeCoord));
+    PetscCall(BoltJSONReal(j, "load_force", BoltLoadSetLoadForce(loads)));
+    PetscCall(BoltJSONString(j, "probe_group", BoltLoadSetProbeGroup(loads)));
+    PetscCall(BoltJSONInt(j, "probe_component", BoltLoadSetProbeComponent(loads)));
+    PetscCall(BoltJSONRealArray(j, "probe_coordinates", 3, BoltLoadSetProbeCoordinates(loads)));
     PetscCall(BoltJSONReal(j, "probe_displacement", s->probe));
     PetscCall(BoltJSONReal(j, "seconds", s->tStatic));
     PetscCall(BoltJSONEndObject(j));
@@ -87,7 +87,7 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
 
   PetscFunctionBeginUser;
   PetscCall(BoltJSONBeginObject(j, "preload"));
-  PetscCall(BoltJSONReal(j, "force", s->loads->preloadForce));
+  PetscCall(BoltJSONReal(j, "force", BoltLoadSetPreloadForce(s->loads)));
   PetscCall(BoltNewmarkPreloadSummaryWrite(s->fomRun, j));
   PetscCall(BoltJSONReal(j, "penetration_max", s->preloadPenetration));
   PetscCall(BoltJSONReal(j, "multiplier_change", s->preloadChange));
@@ -124,7 +124,7 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
     PetscCall(BoltNewmarkGetTiming(s->romRun, NULL, &tr));
     PetscCall(BoltJSONReal(j, "speedup", tf / tr));
     PetscCall(BoltJSONBeginObject(j, "errors"));
-    PetscCall(BoltJSONBeginObject(j, s->loads->probeGroup));
+    PetscCall(BoltJSONBeginObject(j, BoltLoadSetProbeGroup(s->loads)));
     PetscCall(BoltJSONReal(j, "e_L2", s->errL2));
     PetscCall(BoltJSONReal(j, "e_mean", s->errMean));
     PetscCall(BoltJSONEndObject(j));

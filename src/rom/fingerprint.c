@@ -83,8 +83,8 @@ PetscErrorCode BoltROMFingerprintScene(BoltAssembler *asmb, BoltContactSet *c, B
   PetscCall(BoltROMFingerprintReal(fp, "krylov_deflation_tol", defl));
   PetscCall(BoltROMFingerprintInt(fp, "n_ccm", nCCM));
   PetscCall(BoltROMFingerprintInt(fp, "n_jim", nJIM));
-  PetscCall(BoltROMFingerprintString(fp, "preload_group_lower", loads->preloadGroup[0]));
-  PetscCall(BoltROMFingerprintString(fp, "preload_group_upper", loads->preloadGroup[1]));
+  PetscCall(BoltROMFingerprintString(fp, "preload_group_lower", BoltLoadSetPreloadGroup(loads, 0)));
+  PetscCall(BoltROMFingerprintString(fp, "preload_group_upper", BoltLoadSetPreloadGroup(loads, 1)));
   for (PetscInt p = 0; p < m->nparts; p++) {
     const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
     PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_E", m->partName[p]));

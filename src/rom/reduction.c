@@ -24,8 +24,8 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
       PetscCall(BVRestoreColumn(*B, col, &v));
       col++;
     }
-  PetscCall(BVInsertVec(*B, col++, loads->loadUnit));
-  PetscCall(BVInsertVec(*B, col++, loads->preload));
+  PetscCall(BVInsertVec(*B, col++, BoltLoadSetLoadUnit(loads)));
+  PetscCall(BVInsertVec(*B, col++, BoltLoadSetPreload(loads)));
   PetscCall(PetscFree(pairs));
   PetscFunctionReturn(0);
 }
@@ -53,9 +53,9 @@ static PetscErrorCode BoltROMExtractRows(BoltROM *rom, BV V, BoltLoadSet *loads)
     PetscCall(VecRestoreArrayRead(uc, &u));
   }
   PetscCall(BoltContactWorkDestroy(&w));
-  PetscCall(VecDuplicate(loads->load, &e));
+  PetscCall(VecDuplicate(BoltLoadSetLoad(loads), &e));
   PetscCall(VecZeroEntries(e));
-  if (loads->probeDof >= 0) PetscCall(VecSetValue(e, loads->probeDof, 1.0, INSERT_VALUES));
+  if (BoltLoadSetProbeDof(loads) >= 0) PetscCall(VecSetValue(e, BoltLoadSetProbeDof(loads), 1.0, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(e));
   PetscCall(VecAssemblyEnd(e));
   PetscCall(PetscMalloc1(rom->n + 1, &rom->Vprobe));
@@ -233,17 +233,17 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     PetscCall(BoltInterfaceBuild(contact, M, C, K, kry->s0, o->nCCM, o->nJIM, kry->deflationTol, &ir));
     PetscCall(PetscLogEventEnd(BOLT_EVENT_INTERFACE_REDUCTION, 0, 0, 0, 0));
     PetscCall(BVCreate(o->comm, &B));
-    PetscCall(BVSetSizesFromVec(B, loads->load, ir->nIR + 2));
+    PetscCall(BVSetSizesFromVec(B, BoltLoadSetLoad(loads), ir->nIR + 2));
     PetscCall(BVSetFromOptions(B));
     PetscCall(BoltInterfaceInputs(ir, B, 0));
-    PetscCall(BVInsertVec(B, ir->nIR, loads->loadUnit));
-    PetscCall(BVInsertVec(B, ir->nIR + 1, loads->preload));
+    PetscCall(BVInsertVec(B, ir->nIR, BoltLoadSetLoadUnit(loads)));
+    PetscCall(BVInsertVec(B, ir->nIR + 1, BoltLoadSetPreload(loads)));
     rom->ninputs  = ir->nIR + 2;
     kry->solve    = BoltInterfaceSolve;
     kry->solveCtx = ir;
     rom->nCCM     = ir->rankCCM;
     rom->nJIM     = ir->rankJIM;
-  } else PetscCall(BoltInputMatrix(contact, loads, loads->load, &B, &rom->ninputs));
+  } else PetscCall(BoltInputMatrix(contact, loads, BoltLoadSetLoad(loads), &B, &rom->ninputs));
   PetscCall(PetscTime(&t1));
   rom->tInterface = t1 - t0;
   PetscCall(PetscLogEventBegin(BOLT_EVENT_BASIS, 0, 0, 0, 0));
@@ -292,9 +292,9 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscCall(BoltProject(V, M, &rom->Mr));
   PetscCall(BoltProject(V, C, &rom->Cr));
   PetscCall(BoltProject(V, K, &rom->Kr));
-  PetscCall(BoltProjectVec(V, loads->load, &rom->loadr));
-  PetscCall(BoltProjectVec(V, loads->loadUnit, &rom->loadUnitr));
-  PetscCall(BoltProjectVec(V, preloadCalibrated ? preloadCalibrated : loads->preload, &rom->preloadr));
+  PetscCall(BoltProjectVec(V, BoltLoadSetLoad(loads), &rom->loadr));
+  PetscCall(BoltProjectVec(V, BoltLoadSetLoadUnit(loads), &rom->loadUnitr));
+  PetscCall(BoltProjectVec(V, preloadCalibrated ? preloadCalibrated : BoltLoadSetPreload(loads), &rom->preloadr));
   PetscCall(VecDestroy(&preloadCalibrated));
   PetscCall(BoltROMExtractRows(rom, V, loads));
   PetscCall(PetscLogEventEnd(BOLT_EVENT_PROJECTION, 0, 0, 0, 0));

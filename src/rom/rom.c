@@ -299,8 +299,8 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(MatAXPY(A, s0, C, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(A, s0 * s0, M, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(A, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
-  PetscCall(VecDuplicate(loads->load, &q));
-  f = loads->load;
+  PetscCall(VecDuplicate(BoltLoadSetLoad(loads), &q));
+  f = BoltLoadSetLoad(loads);
   PetscCall(BoltDirectSolverCreate(rom->comm, NULL, A, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
   PetscCall(KSPSolve(ksp, f, q));
   /* compare at the contact DOFs and the probe */

@@ -153,7 +153,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   char         tmp[PETSC_MAX_PATH_LEN], groups[256] = "";
   PetscInt     ncd, *cd, npts = 0, n = rom->n;
   PetscScalar *a;
-  const char  *candidates[] = {"load_point", "corner_point", loads->loadGroup, loads->probeGroup};
+  const char  *candidates[] = {"load_point", "corner_point", BoltLoadSetLoadGroup(loads), BoltLoadSetProbeGroup(loads)};
 
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMesh(asmb, &m));
@@ -177,12 +177,12 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(PetscMalloc1(2 * n + 1, &a));
   {
     const PetscScalar *x, *y;
-    PetscCheck(loads->preloadForce != 0 || !loads->hasPreload, comm, PETSC_ERR_USER_INPUT, "A ROM file needs a nonzero -preload_force to store the preload pattern");
+    PetscCheck(BoltLoadSetPreloadForce(loads) != 0 || !BoltLoadSetHasPreload(loads), comm, PETSC_ERR_USER_INPUT, "A ROM file needs a nonzero -preload_force to store the preload pattern");
     PetscCall(VecGetArrayRead(rom->loadUnitr, &x));
     PetscCall(VecGetArrayRead(rom->preloadr, &y));
     for (PetscInt j = 0; j < n; j++) {
       a[j]     = x[j];
-      a[n + j] = loads->preloadForce != 0 ? y[j] / loads->preloadForce : 0;
+      a[n + j] = BoltLoadSetPreloadForce(loads) != 0 ? y[j] / BoltLoadSetPreloadForce(loads) : 0;
     }
     PetscCall(VecRestoreArrayRead(rom->loadUnitr, &x));
     PetscCall(VecRestoreArrayRead(rom->preloadr, &y));
@@ -191,7 +191,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(BoltHDF5WriteValues(v, comm, "preload_unit", n, 1, &a[n], PETSC_TRUE));
   PetscCall(PetscFree(a));
   /* rows at the contact DOFs, each rank its owned ones, in global order */
-  PetscCall(BoltOwnedContactDofs(rom->contact, loads->load, &ncd, &cd));
+  PetscCall(BoltOwnedContactDofs(rom->contact, BoltLoadSetLoad(loads), &ncd, &cd));
   {
     Vec          w, d;
     PetscScalar *x, *y;
@@ -207,7 +207,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
       Vec                keys;
       const PetscScalar *k;
       PetscInt           kstart;
-      PetscCall(BoltMeshDofKeys(rom->contact->mesh, loads->load, &keys));
+      PetscCall(BoltMeshDofKeys(rom->contact->mesh, BoltLoadSetLoad(loads), &keys));
       PetscCall(VecGetOwnershipRange(keys, &kstart, NULL));
       PetscCall(VecGetArrayRead(keys, &k));
       for (PetscInt i = 0; i < ncd; i++) y[i] = k[cd[i] - kstart];
@@ -258,7 +258,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(BoltROMFingerprintWrite(&rom->fingerprint, v));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, groups));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "input_load", PETSC_STRING, loads->loadGroup));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "input_load", PETSC_STRING, BoltLoadSetLoadGroup(loads)));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "dimension", PETSC_INT, &n));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "order", PETSC_INT, &rom->order));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "inputs", PETSC_INT, &rom->ninputs));
@@ -307,7 +307,7 @@ static PetscErrorCode ROMLoadContactRows(BoltROM *rom, BoltContactSet *c, BoltLo
       perm[i]    = i;
     }
     PetscCall(PetscSortIntWithArray(ncd, fileKey, perm));
-    PetscCall(BoltMeshDofKeys(c->mesh, loads->load, &keys));
+    PetscCall(BoltMeshDofKeys(c->mesh, BoltLoadSetLoad(loads), &keys));
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->nlocal, &ckeys));
     PetscCall(VecScatterBegin(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(VecScatterEnd(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
@@ -396,24 +396,24 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &rom->loadr));
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &rom->preloadr));
     PetscCall(PetscMalloc1(n + 1, &a));
-    PetscCall(PetscStrcmp(input, loads->loadGroup, &same));
+    PetscCall(PetscStrcmp(input, BoltLoadSetLoadGroup(loads), &same));
     if (same) {
       PetscCall(BoltReadArray(v, "load_unit", n, 1, a));
-      for (PetscInt j = 0; j < n; j++) a[j] *= loads->loadForce;
+      for (PetscInt j = 0; j < n; j++) a[j] *= BoltLoadSetLoadForce(loads);
     } else {
       PetscInt g = -1;
       for (PetscInt k = 0; k < npts; k++) {
         PetscBool s;
-        PetscCall(PetscStrcmp(names[k], loads->loadGroup, &s));
+        PetscCall(PetscStrcmp(names[k], BoltLoadSetLoadGroup(loads), &s));
         if (s) g = k;
       }
-      PetscCheck(o->extraInputs, comm, PETSC_ERR_USER_INPUT, "ROM file %s was built for the load at '%s', not at '%s': rebuild it for this load, or run it anyway with -rom_allow_foreign_load (the load then acts through a basis that was not built for it)", file, input, loads->loadGroup);
-      PetscCheck(g >= 0, comm, PETSC_ERR_USER_INPUT, "ROM file %s has no rows of the basis at '%s' (it has %s): the load cannot be projected; rebuild the ROM", file, loads->loadGroup, groups);
+      PetscCheck(o->extraInputs, comm, PETSC_ERR_USER_INPUT, "ROM file %s was built for the load at '%s', not at '%s': rebuild it for this load, or run it anyway with -rom_allow_foreign_load (the load then acts through a basis that was not built for it)", file, input, BoltLoadSetLoadGroup(loads));
+      PetscCheck(g >= 0, comm, PETSC_ERR_USER_INPUT, "ROM file %s has no rows of the basis at '%s' (it has %s): the load cannot be projected; rebuild the ROM", file, BoltLoadSetLoadGroup(loads), groups);
       for (PetscInt j = 0; j < n; j++) {
         a[j] = 0;
-        for (PetscInt d = 0; d < 3; d++) a[j] += loads->loadForce * loads->loadDirection[d] * Vpoints[(3 * g + d) * n + j];
+        for (PetscInt d = 0; d < 3; d++) a[j] += BoltLoadSetLoadForce(loads) * BoltLoadSetLoadDirection(loads)[d] * Vpoints[(3 * g + d) * n + j];
       }
-      PetscCall(PetscPrintf(comm, "ROM: the load at '%s' is not an input of %s (built for '%s'): projected with the stored rows, as asked\n", loads->loadGroup, file, input));
+      PetscCall(PetscPrintf(comm, "ROM: the load at '%s' is not an input of %s (built for '%s'): projected with the stored rows, as asked\n", BoltLoadSetLoadGroup(loads), file, input));
     }
     {
       PetscScalar *x;
@@ -422,7 +422,7 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
       PetscCall(VecRestoreArray(rom->loadr, &x));
       PetscCall(BoltReadArray(v, "preload_unit", n, 1, a));
       PetscCall(VecGetArray(rom->preloadr, &x));
-      for (PetscInt j = 0; j < n; j++) x[j] = a[j] * loads->preloadForce;
+      for (PetscInt j = 0; j < n; j++) x[j] = a[j] * BoltLoadSetPreloadForce(loads);
       PetscCall(VecRestoreArray(rom->preloadr, &x));
     }
     /* the probe row */
@@ -430,12 +430,12 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
       PetscInt g = -1;
       for (PetscInt k = 0; k < npts; k++) {
         PetscBool s;
-        PetscCall(PetscStrcmp(names[k], loads->probeGroup, &s));
+        PetscCall(PetscStrcmp(names[k], BoltLoadSetProbeGroup(loads), &s));
         if (s) g = k;
       }
-      PetscCheck(g >= 0, comm, PETSC_ERR_USER_INPUT, "ROM file %s has no rows of the basis at the probe '%s' (it has %s): rebuild the ROM", file, loads->probeGroup, groups);
+      PetscCheck(g >= 0, comm, PETSC_ERR_USER_INPUT, "ROM file %s has no rows of the basis at the probe '%s' (it has %s): rebuild the ROM", file, BoltLoadSetProbeGroup(loads), groups);
       PetscCall(PetscMalloc1(n + 1, &rom->Vprobe));
-      for (PetscInt j = 0; j < n; j++) rom->Vprobe[j] = PetscRealPart(Vpoints[(3 * g + loads->probeComponent) * n + j]);
+      for (PetscInt j = 0; j < n; j++) rom->Vprobe[j] = PetscRealPart(Vpoints[(3 * g + BoltLoadSetProbeComponent(loads)) * n + j]);
     }
     PetscCall(PetscStrToArrayDestroy(nn, names));
     PetscCall(PetscFree(a));

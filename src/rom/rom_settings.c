@@ -74,7 +74,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   kry = o->krylov;
   PetscCall(BoltROMFingerprintScene(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, &rom->fingerprint));
   /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
-  rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && loads->hasPreload && loads->preloadForce != 0);
+  rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0);
   PetscCheck(!(o->preloadStateSet && o->preloadState) || rom->preloadState, o->comm, PETSC_ERR_USER_INPUT, "-rom_preload_state needs a ROM with the penalty law (interface reduction, -rom_contact_augment false) and a nonzero bolt preload");
   /* Against a FOM that closes its gaps the increments want a near-hard penalty: 1e5 E/m (500 x
      the paper's), where the penalty law alone matches the augmented FOM. Without the closed-contact
@@ -82,7 +82,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
      does best (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
   rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augment ? (o->nClosed > 0 ? 1e5 : 4e3) / contact->penaltyFactor : 1.0);
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
-  staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && loads->hasPreload && loads->preloadForce != 0));
+  staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0));
   rom->nClosed = staticShapes ? o->nClosed : 0;
   /* Opening shapes by default for the interface-reduced ROM under the strict law (the ROM without
      interface reduction has every node pair's force among its inputs; the stick law's scenes are

@@ -77,7 +77,7 @@ static PetscErrorCode BoltVecReplaceByCopy(Vec src, Vec *v)
 static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, BoltOperator *op, PetscReal staticPenaltyScale, const BoltPreloadState *shared, Vec q, Vec rhs, Vec *start, Vec *preload)
 {
   BoltContactState *s = op->state;
-  PetscReal         F = loads->preloadForce, outer, inner;
+  PetscReal         F = BoltLoadSetPreloadForce(loads), outer, inner;
   PetscInt          nout, nin;
 
   PetscFunctionBeginUser;
@@ -314,8 +314,8 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
   s = op->state;
   /* the calibration scales the preload vector and the load response may scale the load: work
      on copies, the scene's stay as they are */
-  PetscCall(BoltVecReplaceByCopy(loads->preload, &op->preload));
-  PetscCall(BoltVecReplaceByCopy(loads->load, &op->load));
+  PetscCall(BoltVecReplaceByCopy(BoltLoadSetPreload(loads), &op->preload));
+  PetscCall(BoltVecReplaceByCopy(BoltLoadSetLoad(loads), &op->load));
   PetscCall(BoltDualCreate(op, &dual));
   PetscCall(BoltDualSetFromOptions(dual));
   PetscCall(BoltDualSetUp(dual));

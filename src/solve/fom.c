@@ -113,7 +113,7 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   op->solverType       = MATSOLVERMUMPS;
   op->exactConstraints = PETSC_TRUE;
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
-  PetscCall(BoltOperatorSetSystem(op, M, NULL, K, loads->load, loads->preload));
+  PetscCall(BoltOperatorSetSystem(op, M, NULL, K, BoltLoadSetLoad(loads), BoltLoadSetPreload(loads)));
   if (transient) {
     Mat       C;
     PetscReal alpha, beta;
