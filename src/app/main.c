@@ -140,7 +140,10 @@ int main(int argc, char **argv)
   int wantHelp = 0;
   for (int i = 0; i < argc; i++) {
     if (!strcmp(argv[i], "-options_file") && i + 1 < argc && nscenes < 16) scenes[nscenes++] = argv[++i];
-    else if (i > 0 && (!strcmp(argv[i], "-help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--help"))) wantHelp = 1;
+    else if (i > 0 && (!strcmp(argv[i], "-help") || !strcmp(argv[i], "-h") || !strcmp(argv[i], "--help"))) {
+      wantHelp = 1;
+      if (i + 1 < argc && !strcmp(argv[i + 1], "intro")) i++; /* PETSc's "-help intro": the same list here */
+    }
     else args[nargs++] = argv[i];
   }
   args[nargs] = NULL;
