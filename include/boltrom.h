@@ -33,18 +33,13 @@ PetscErrorCode BoltMemoryPrint(MPI_Comm, const char[]);
 PetscErrorCode BoltMemoryRelease(void);
 
 /* ------------------------------------------------------------------ material.c */
-typedef struct {
-  char      name[BOLTROM_NAME_LEN];
-  PetscReal E, nu, rho;
-} BoltMaterial;
+typedef struct _n_BoltMaterial BoltMaterial;
 
-typedef struct {
-  PetscInt     nmat;
-  BoltMaterial mat[BOLTROM_MAX_PARTS];
-} BoltMaterialTable;
+typedef struct _n_BoltMaterialTable BoltMaterialTable;
 
 PetscErrorCode BoltMaterialTableSetFromOptions(MPI_Comm, BoltMaterialTable *);
 PetscErrorCode BoltMaterialTableFind(MPI_Comm, const BoltMaterialTable *, const char[], PetscInt *);
+PetscErrorCode BoltMaterialTableDestroy(BoltMaterialTable **);
 
 /* ------------------------------------------------------------------ mesh.c */
 /* The distributed mesh, its parts and groups, and the DOF layout (3 per vertex, clamp removed). */
@@ -69,7 +64,7 @@ typedef struct {
   PetscInt          partTag[BOLTROM_MAX_PARTS]; /* gmsh physical tag = label value */
   PetscInt          nverticesGlobal, ncellsGlobal, ndofsFree;
   PetscInt          edgeCut;         /* faces between cells of different ranks, after distribution */
-  BoltMaterialTable materials;
+  BoltMaterialTable *materials;  /* owned */
   Hex8Formulation   formulation;
 } BoltMesh;
 
@@ -78,6 +73,8 @@ PetscErrorCode BoltMeshSetFromOptions(BoltMesh *);
 PetscErrorCode BoltMeshSetUp(BoltMesh *);
 PetscErrorCode BoltMeshView(BoltMesh *, PetscViewer);
 PetscErrorCode BoltMeshDestroy(BoltMesh **);
+/* Part p's material: its name, Young's modulus [Pa], Poisson's ratio and density [kg/m^3] */
+PetscErrorCode BoltMeshPartMaterial(BoltMesh *, PetscInt, const char **, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode BoltMeshHasGroup(BoltMesh *, const char[], PetscBool *);
 PetscErrorCode BoltMeshCellCoordinates(BoltMesh *, PetscInt, PetscReal[24]);
 PetscErrorCode BoltMeshCellDofs(BoltMesh *, PetscInt, PetscInt[24]);

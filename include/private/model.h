@@ -25,4 +25,14 @@ struct _n_BoltLoadSet {
   PetscReal probeCoord[3];
 };
 
+struct _n_BoltMaterial {
+  char      name[BOLTROM_NAME_LEN];
+  PetscReal E, nu, rho;
+};
+
+struct _n_BoltMaterialTable {
+  PetscInt     nmat;
+  BoltMaterial mat[BOLTROM_MAX_PARTS];
+};
+
 #endif

@@ -49,7 +49,11 @@ static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIIn
     PetscCall(SummaryNamed(j, "volume_per_part", mesh->nparts, mesh->partName, NULL, volume));
   }
   PetscCall(BoltJSONBeginObject(j, "material_per_part"));
-  for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltJSONString(j, mesh->partName[p], mesh->materials.mat[mesh->partMaterial[p]].name));
+  for (PetscInt p = 0; p < mesh->nparts; p++) {
+    const char *name;
+    PetscCall(BoltMeshPartMaterial(mesh, p, &name, NULL, NULL, NULL));
+    PetscCall(BoltJSONString(j, mesh->partName[p], name));
+  }
   PetscCall(BoltJSONEndObject(j));
   PetscFunctionReturn(0);
 }

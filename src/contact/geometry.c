@@ -229,11 +229,13 @@ static PetscErrorCode ContactOrientedFace(BoltMesh *m, const char na[], PetscInt
 static PetscErrorCode ContactPairParameters(BoltContactSet *c, PetscInt p, PetscInt partA, PetscInt partB)
 {
   BoltMesh *m  = c->mesh;
-  PetscReal Ea = m->materials.mat[m->partMaterial[partA]].E, Eb = m->materials.mat[m->partMaterial[partB]].E, factor = c->penaltyFactor;
+  PetscReal Ea, Eb, factor = c->penaltyFactor;
   PetscBool set;
   char      opt[BOLTROM_NAME_LEN + 48];
 
   PetscFunctionBeginUser;
+  PetscCall(BoltMeshPartMaterial(m, partA, NULL, &Ea, NULL, NULL));
+  PetscCall(BoltMeshPartMaterial(m, partB, NULL, &Eb, NULL, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-contact_%s_penalty_factor", c->pairName[p]));
   PetscOptionsBegin(m->comm, NULL, "Contact pair", "boltrom");
   PetscCall(PetscOptionsReal(opt, "Penalty of this pair, x E of its softer part, per metre", NULL, factor, &factor, NULL));

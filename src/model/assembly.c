@@ -39,7 +39,7 @@ static PetscErrorCode BoltAssemblerAddCells(BoltAssembler *a, PetscInt onlyPart,
   PetscFunctionBeginUser;
   for (PetscInt c = m->cStart; c < m->cEnd; c++) {
     PetscInt            part = m->cellPart[c - m->cStart];
-    const BoltMaterial *mat  = &m->materials.mat[m->partMaterial[part]];
+    const BoltMaterial *mat  = &m->materials->mat[m->partMaterial[part]];
     PetscErrorCode      ierr;
 
     if (onlyPart >= 0 && part != onlyPart) continue;

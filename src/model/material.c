@@ -14,6 +14,13 @@ static PetscErrorCode BoltMaterialAdd(BoltMaterialTable *table, const char name[
 }
 
 /* Defaults are the paper's Table 1; -materials adds or renames, -material_<name>_E etc. override. */
+PetscErrorCode BoltMaterialTableDestroy(BoltMaterialTable **table)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(*table));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltMaterialTableSetFromOptions(MPI_Comm comm, BoltMaterialTable *table)
 {
   char     *names[BOLTROM_MAX_PARTS];
@@ -72,5 +79,17 @@ PetscErrorCode BoltMaterialTableFind(MPI_Comm comm, const BoltMaterialTable *tab
     if (same) *idx = j;
   }
   PetscCheck(*idx >= 0, comm, PETSC_ERR_USER_INPUT, "Unknown material '%s': use steel, aluminium or one declared with -materials", name);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltMeshPartMaterial(BoltMesh *m, PetscInt part, const char **name, PetscReal *E, PetscReal *nu, PetscReal *rho)
+{
+  const BoltMaterial *mat = &m->materials->mat[m->partMaterial[part]];
+
+  PetscFunctionBeginUser;
+  if (name) *name = mat->name;
+  if (E) *E = mat->E;
+  if (nu) *nu = mat->nu;
+  if (rho) *rho = mat->rho;
   PetscFunctionReturn(0);
 }

@@ -14,6 +14,7 @@ PetscErrorCode BoltMeshCreate(MPI_Comm comm, BoltMesh **mesh)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&m));
+  PetscCall(PetscNew(&m->materials));
   m->comm  = comm;
   m->clamp = PETSC_TRUE;
   PetscCall(PetscStrncpy(m->clampGroup, "clamp", sizeof(m->clampGroup)));
@@ -50,7 +51,7 @@ PetscErrorCode BoltMeshSetFromOptions(BoltMesh *m)
   PetscCall(PetscOptionsString("-part_material", "Material of each part, as part:material pairs separated by commas", NULL, m->partMaterialMap, m->partMaterialMap, sizeof(m->partMaterialMap), NULL));
   PetscCall(PetscOptionsEnum("-element", "Hexahedron formulation: full (2x2x2 Gauss) or incompatible (Wilson-Taylor modes, no bending locking)", "Hex8Formulation", forms, (PetscEnum)m->formulation, (PetscEnum *)&m->formulation, NULL));
   PetscOptionsEnd();
-  PetscCall(BoltMaterialTableSetFromOptions(m->comm, &m->materials));
+  PetscCall(BoltMaterialTableSetFromOptions(m->comm, m->materials));
   PetscFunctionReturn(0);
 }
 
@@ -140,7 +141,7 @@ static PetscErrorCode BoltMeshAssignMaterials(BoltMesh *m)
       len = (size_t)(colon - pairs[i]);
       PetscCall(PetscStrncmp(pairs[i], m->partName[p], len, &same));
       if (same && m->partName[p][len] == '\0') {
-        PetscCall(BoltMaterialTableFind(m->comm, &m->materials, colon + 1, &m->partMaterial[p]));
+        PetscCall(BoltMaterialTableFind(m->comm, m->materials, colon + 1, &m->partMaterial[p]));
         found = PETSC_TRUE;
       }
     }
@@ -461,7 +462,7 @@ PetscErrorCode BoltMeshView(BoltMesh *m, PetscViewer viewer)
   }
   if (size > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "  partitioner %s on %d ranks: edge cut %" PetscInt_FMT " faces\n", m->partitioner, size, m->edgeCut));
   for (PetscInt p = 0; p < m->nparts; p++) {
-    const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
+    const BoltMaterial *mat = &m->materials->mat[m->partMaterial[p]];
     PetscCall(PetscViewerASCIIPrintf(viewer, "  part %-12s %-10s E %.4g Pa, nu %.3g, rho %.5g kg/m^3\n", m->partName[p], mat->name, (double)mat->E, (double)mat->nu, (double)mat->rho));
   }
   PetscFunctionReturn(0);
@@ -475,6 +476,7 @@ PetscErrorCode BoltMeshDestroy(BoltMesh **mesh)
   PetscCall(PetscFree((*mesh)->cellPart));
   PetscCall(PetscFree((*mesh)->pointOriginal));
   PetscCall(PetscBTDestroy(&(*mesh)->pointGhost));
+  PetscCall(BoltMaterialTableDestroy(&(*mesh)->materials));
   PetscCall(PetscFree(*mesh));
   PetscFunctionReturn(0);
 }

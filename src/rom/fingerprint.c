@@ -86,13 +86,14 @@ PetscErrorCode BoltROMFingerprintScene(BoltAssembler *asmb, BoltContactSet *c, B
   PetscCall(BoltROMFingerprintString(fp, "preload_group_lower", BoltLoadSetPreloadGroup(loads, 0)));
   PetscCall(BoltROMFingerprintString(fp, "preload_group_upper", BoltLoadSetPreloadGroup(loads, 1)));
   for (PetscInt p = 0; p < m->nparts; p++) {
-    const BoltMaterial *mat = &m->materials.mat[m->partMaterial[p]];
+    PetscReal E, nu, rho;
+    PetscCall(BoltMeshPartMaterial(m, p, NULL, &E, &nu, &rho));
     PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_E", m->partName[p]));
-    PetscCall(BoltROMFingerprintReal(fp, key, mat->E));
+    PetscCall(BoltROMFingerprintReal(fp, key, E));
     PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_nu", m->partName[p]));
-    PetscCall(BoltROMFingerprintReal(fp, key, mat->nu));
+    PetscCall(BoltROMFingerprintReal(fp, key, nu));
     PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_rho", m->partName[p]));
-    PetscCall(BoltROMFingerprintReal(fp, key, mat->rho));
+    PetscCall(BoltROMFingerprintReal(fp, key, rho));
   }
   PetscCall(BoltROMFingerprintString(fp, "contact_law", c->lawType));
   PetscCall(BoltROMFingerprintString(fp, "contact_quadrature", c->quadrature == BOLT_QUADRATURE_NODAL ? "nodal" : "gauss"));
