@@ -342,45 +342,29 @@ PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **);
    ROM both provide one, through an ops table. */
 typedef struct BoltOperator_s BoltOperator;
 typedef struct BoltDual_s     BoltDual;
-typedef struct {
-  PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);             /* q -> contact->uc */
-  PetscErrorCode (*contactForces)(BoltOperator *, const PetscReal[], Vec); /* Gauss-point tractions -> F (overwritten) */
-  PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);               /* K_c of the active set */
-  /* optional, else from contactDisplacements and the state's own computation: */
-  PetscErrorCode (*contactGaps)(BoltOperator *, Vec, PetscReal[]);         /* q -> the gaps at the local contact points */
-  PetscErrorCode (*openTraction)(BoltOperator *, PetscReal[]);             /* the traction of the opening test (BoltContactStateOpenTraction) */
-  PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
-  /* checkpoints: the model's vectors (named datasets) and whatever else its state holds */
-  PetscErrorCode (*vectorsSave)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]);
-  PetscErrorCode (*vectorsLoad)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[], PetscInt *);
-  PetscErrorCode (*stateSave)(BoltOperator *, PetscViewer);
-  PetscErrorCode (*stateLoad)(BoltOperator *, PetscViewer);
-  PetscErrorCode (*view)(BoltOperator *, PetscViewer);
-  PetscErrorCode (*destroy)(BoltOperator *);
-  /* optional, else the dual loop factorises K_eff afresh and solves with it: */
-  PetscErrorCode (*factor)(BoltOperator *, BoltDual *);          /* after a change of the active set */
-  PetscErrorCode (*solve)(BoltOperator *, BoltDual *, Vec, Vec); /* K_eff x = b */
-} BoltOperatorOps;
-
-struct BoltOperator_s {
-  const char       *name;     /* "FOM" or "ROM" */
-  MPI_Comm          comm;     /* for messages and errors (the ROM's matrices live on every rank) */
-  MatSolverType     solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
-  PetscBool         exactConstraints; /* every contact gap can be closed (FOM, ROM without interface reduction) */
-  PetscBool         keepStructural; /* the dual loop keeps K + a1 M + a4 C summed for its factorisations (small dense matrices: the ROM) */
-  char              prefix[16]; /* options prefix of its solver: fom_ or rom_ */
-  Mat               M, C, K;
-  PetscReal         rayleigh[2];   /* C = rayleigh[0] M + rayleigh[1] K (BoltOperatorSetDamping) */
-  Vec               load, preload; /* external load pattern and preload, in its coordinates */
-  BoltContactSet   *contact;  /* the shared geometry */
-  BoltContactState *state;    /* this model's own contact state */
-  void             *ctx;
-  BoltOperatorOps   ops;
-};
+typedef struct _n_BoltOperatorOps BoltOperatorOps;
 
 PetscErrorCode BoltOperatorCreate(MPI_Comm, const char[], BoltContactSet *, BoltOperator **);
 PetscErrorCode BoltOperatorSetSystem(BoltOperator *, Mat, Mat, Mat, Vec, Vec);
 PetscErrorCode BoltOperatorSetDamping(BoltOperator *, Mat, PetscReal, PetscReal);
+typedef enum { BOLT_OP_CONTACT_DISPLACEMENTS, BOLT_OP_CONTACT_FORCES, BOLT_OP_CONTACT_STIFFNESS, BOLT_OP_CONTACT_GAPS, BOLT_OP_OPEN_TRACTION, BOLT_OP_PROBE, BOLT_OP_VECTORS_SAVE, BOLT_OP_VECTORS_LOAD, BOLT_OP_STATE_SAVE, BOLT_OP_STATE_LOAD, BOLT_OP_VIEW, BOLT_OP_DESTROY, BOLT_OP_FACTOR, BOLT_OP_SOLVE } BoltOperatorOp;
+PetscErrorCode    BoltOperatorSetOperation(BoltOperator *, BoltOperatorOp, void (*)(void));
+PetscErrorCode    BoltOperatorSetSolver(BoltOperator *, const char[], MatSolverType, PetscBool, PetscBool);
+PetscErrorCode    BoltOperatorGetSolver(BoltOperator *, const char *[], MatSolverType *);
+PetscErrorCode    BoltOperatorSetContext(BoltOperator *, void *);
+PetscErrorCode    BoltOperatorCopyLoads(BoltOperator *, Vec, Vec);
+PetscErrorCode    BoltOperatorContactDisplacements(BoltOperator *, Vec);
+PetscErrorCode    BoltOperatorContactStiffness(BoltOperator *, Mat *);
+PetscErrorCode    BoltOperatorProbe(BoltOperator *, Vec, PetscReal *);
+void             *BoltOperatorContext(BoltOperator *);
+BoltContactState *BoltOperatorState(BoltOperator *);
+BoltContactSet   *BoltOperatorContact(BoltOperator *);
+MPI_Comm          BoltOperatorComm(BoltOperator *);
+Mat               BoltOperatorMass(BoltOperator *);
+Mat               BoltOperatorStiffness(BoltOperator *);
+PetscErrorCode    BoltOperatorReleaseDamping(BoltOperator *);
+Vec               BoltOperatorLoadVec(BoltOperator *);
+Vec               BoltOperatorPreloadVec(BoltOperator *);
 PetscErrorCode BoltOperatorView(BoltOperator *, PetscViewer);
 PetscErrorCode BoltOperatorDestroy(BoltOperator **);
 
@@ -455,7 +439,7 @@ PetscErrorCode BoltNewmarkGetTiming(BoltNewmark *, PetscReal *, PetscReal *);
 PetscErrorCode BoltNewmarkGetStaticSolve(BoltNewmark *, PetscReal *, PetscReal *);
 PetscErrorCode BoltNewmarkGetLoad(BoltNewmark *, BoltLoadHistory *, PetscReal *);
 PetscErrorCode BoltNewmarkSetCheckpointBase(BoltNewmark *, const char[]);
-PetscErrorCode BoltNewmarkGetCheckpoint(BoltNewmark *, const char *[], PetscInt *);
+PetscErrorCode BoltNewmarkOptionsCheck(MPI_Comm, const char[], char[]);
 PetscErrorCode BoltNewmarkPreloadSummaryWrite(BoltNewmark *, BoltJSON *);
 PetscErrorCode BoltNewmarkSummaryWrite(BoltNewmark *, BoltJSON *, PetscBool);
 PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *);

@@ -3,6 +3,44 @@
 /* Inside the solvers (src/solve/): what the dual loop's files share and no other module sees. */
 #include "boltrom.h"
 
+/* A model's operations (BoltOperatorSetOperation fills them). */
+struct _n_BoltOperatorOps {
+  PetscErrorCode (*contactDisplacements)(BoltOperator *, Vec);             /* q -> contact->uc */
+  PetscErrorCode (*contactForces)(BoltOperator *, const PetscReal[], Vec); /* Gauss-point tractions -> F (overwritten) */
+  PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);               /* K_c of the active set */
+  /* optional, else from contactDisplacements and the state's own computation: */
+  PetscErrorCode (*contactGaps)(BoltOperator *, Vec, PetscReal[]);         /* q -> the gaps at the local contact points */
+  PetscErrorCode (*openTraction)(BoltOperator *, PetscReal[]);             /* the traction of the opening test (BoltContactStateOpenTraction) */
+  PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
+  /* checkpoints: the model's vectors (named datasets) and whatever else its state holds */
+  PetscErrorCode (*vectorsSave)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]);
+  PetscErrorCode (*vectorsLoad)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[], PetscInt *);
+  PetscErrorCode (*stateSave)(BoltOperator *, PetscViewer);
+  PetscErrorCode (*stateLoad)(BoltOperator *, PetscViewer);
+  PetscErrorCode (*view)(BoltOperator *, PetscViewer);
+  PetscErrorCode (*destroy)(BoltOperator *);
+  /* optional, else the dual loop factorises K_eff afresh and solves with it: */
+  PetscErrorCode (*factor)(BoltOperator *, BoltDual *);          /* after a change of the active set */
+  PetscErrorCode (*solve)(BoltOperator *, BoltDual *, Vec, Vec); /* K_eff x = b */
+};
+
+struct BoltOperator_s {
+  const char       *name;     /* "FOM" or "ROM" */
+  MPI_Comm          comm;     /* for messages and errors (the ROM's matrices live on every rank) */
+  MatSolverType     solverType; /* LU of the effective matrix: MUMPS (FOM) or LAPACK (ROM) */
+  PetscBool         exactConstraints; /* every contact gap can be closed (FOM, ROM without interface reduction) */
+  PetscBool         keepStructural; /* the dual loop keeps K + a1 M + a4 C summed for its factorisations (small dense matrices: the ROM) */
+  char              prefix[16]; /* options prefix of its solver: fom_ or rom_ */
+  Mat               M, C, K;
+  PetscReal         rayleigh[2];   /* C = rayleigh[0] M + rayleigh[1] K (BoltOperatorSetDamping) */
+  Vec               load, preload; /* external load pattern and preload, in its coordinates */
+  BoltContactSet   *contact;  /* the shared geometry */
+  BoltContactState *state;    /* this model's own contact state */
+  void             *ctx;
+  BoltOperatorOps   ops;
+};
+
+
 PetscErrorCode BoltDualInnerRegisterAll(void);
 PetscErrorCode BoltDualFactor(BoltDual *d);
 PetscErrorCode BoltDualSolveWithForces(BoltDual *d, Vec rhs0, const PetscReal lambda[], Vec q);

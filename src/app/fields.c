@@ -42,8 +42,8 @@ static PetscErrorCode FieldsHistories(BoltOutput *h5, const char model[], BoltNe
   PetscCall(BoltOutputSeries(h5, group, "probe", N, probe));
   PetscCall(BoltOutputSeries(h5, group, "energy", N, energy));
   for (PetscInt r = 0; r < BOLT_LEDGER; r++) PetscCall(BoltOutputSeries(h5, ledger, rows[r], N, &L[r * N]));
-  PetscCall(BoltOutputPairForces(h5, group, op->contact, N, P));
-  if (BoltContactStateHasFriction(op->state)) {
+  PetscCall(BoltOutputPairForces(h5, group, BoltOperatorContact(op), N, P));
+  if (BoltContactStateHasFriction(BoltOperatorState(op))) {
     const PetscReal *slipping, *dissipated;
     PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_SLIPPING, NULL, &slipping));
     PetscCall(BoltNewmarkGetHistory(nm, BOLT_HISTORY_DISSIPATED, NULL, &dissipated));
@@ -67,7 +67,7 @@ static PetscErrorCode FieldsSnapshots(BoltOutput *h5, BoltMesh *mesh, const char
   PetscFunctionBeginUser;
   PetscCall(BoltNewmarkGetModel(nm, &op, NULL, NULL));
   PetscCall(BoltNewmarkGetSnapshots(nm, &nsnap, &snap, &time, &codes));
-  c = op->contact;
+  c = BoltOperatorContact(op);
   for (PetscInt i = 0; i < nsnap; i++) {
     if (rom) PetscCall(BoltROMExpand(rom, snap[i], u));
     PetscCall(BoltOutputSnapshot(h5, mesh, prefix, i, rom ? u : snap[i]));
@@ -100,11 +100,11 @@ static PetscErrorCode FieldsRun(BoltOutput *h5, const BoltSummary *s, const char
     PetscCall(BoltOutputVertexField(h5, mesh, rom ? u : q, name));
   }
   if (!rom) { /* the FOM's nodal contact forces */
-    PetscCall(BoltContactStateNodalForces(op->state, u));
+    PetscCall(BoltContactStateNodalForces(BoltOperatorState(op), u));
     PetscCall(BoltOutputVertexField(h5, mesh, u, "fom_final_contact_force"));
   }
   PetscCall(PetscSNPrintf(name, sizeof(name), "%s_final_contact_state", model));
-  PetscCall(FieldsFinalContactState(h5, mesh, op->state, name));
+  PetscCall(FieldsFinalContactState(h5, mesh, BoltOperatorState(op), name));
   PetscCall(FieldsHistories(h5, model, nm));
   if (nsnap && whole) PetscCall(FieldsSnapshots(h5, mesh, rom ? "rom_" : "", nm, rom, u));
   PetscCall(VecDestroy(&u));

@@ -141,23 +141,11 @@ PetscErrorCode BoltCheckWritableParent(MPI_Comm comm, const char path[], const c
    checkpointBase: the checkpoints' base name if they are written, else "". */
 PetscErrorCode BoltPreflightSetFromOptions(MPI_Comm comm, const BoltRunOptions *o, char checkpointBase[])
 {
-  BoltOperator stub = {0}; /* the time integrator's options need no model */
-  BoltNewmark *nm;
-  const char  *base;
-  PetscInt     every;
-  char         name[PETSC_MAX_PATH_LEN];
+  char name[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBeginUser;
-  stub.comm = comm; /* the FOM's and the ROM's integrators read the same options */
-  stub.name = "FOM";
-  PetscCall(PetscStrncpy(stub.prefix, "fom_", sizeof(stub.prefix)));
-  PetscCall(BoltNewmarkCreate(&stub, &nm));
   PetscCall(PetscSNPrintf(name, sizeof(name), "%s/%s", o->outputDir, o->outputName));
-  PetscCall(BoltNewmarkSetCheckpointBase(nm, name));
-  PetscCall(BoltNewmarkSetFromOptions(nm));
-  PetscCall(BoltNewmarkGetCheckpoint(nm, &base, &every));
-  PetscCall(PetscStrncpy(checkpointBase, every > 0 ? base : "", PETSC_MAX_PATH_LEN));
-  PetscCall(BoltNewmarkDestroy(&nm));
+  PetscCall(BoltNewmarkOptionsCheck(comm, name, checkpointBase));
   PetscCall(BoltDirectSolverSetFromOptions(comm, "static_", PETSC_FALSE, MATSOLVERMUMPS));
   PetscCall(BoltModalSetFromOptions(comm, o->nev, "modal_"));
   /* K_eff: the FOM's is symmetric (Cholesky by MUMPS), the ROM's dense (LU by PETSc) */

@@ -110,7 +110,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(PetscLogStagePush(BOLT_STAGE_PRELOAD));
   PetscCall(BoltNewmarkPreload(r->fomNm));
   PetscCall(PetscLogStagePop());
-  PetscCall(BoltContactStateNormalForcePerPair(r->fomOp->state, s->preloadForce));
+  PetscCall(BoltContactStateNormalForcePerPair(BoltOperatorState(r->fomOp), s->preloadForce));
   {
     PetscReal outer, inner;
     PetscCall(BoltNewmarkGetStaticSolve(r->fomNm, &outer, &inner));
@@ -129,9 +129,9 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
     PetscCall(PetscPrintf(r->comm, "  normal force of the %" PetscInt_FMT " pairs from %.1f to %.1f N (each in the summary)\n", contact->npairs, (double)lo, (double)hi));
   }
   PetscCall(BoltMemoryPrint(r->comm, "the FOM's preload"));
-  PetscCall(BoltContactStateTractionStats(r->fomOp->state, &s->tractionStats[0], &s->tractionStats[1], &s->tractionStats[2]));
-  s->preloadActive      = r->fomOp->state->nactive;
-  PetscCall(BoltContactStateCountReclosed(r->fomOp->state, &s->preloadSliding, NULL));
+  PetscCall(BoltContactStateTractionStats(BoltOperatorState(r->fomOp), &s->tractionStats[0], &s->tractionStats[1], &s->tractionStats[2]));
+  s->preloadActive      = BoltOperatorState(r->fomOp)->nactive;
+  PetscCall(BoltContactStateCountReclosed(BoltOperatorState(r->fomOp), &s->preloadSliding, NULL));
   {
     BoltDual *dual;
     Vec       q;
@@ -147,7 +147,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltNewmarkView(r->fomNm, PETSC_VIEWER_STDOUT_(r->comm)));
   /* at 562k DOFs the FOM's factorisation and the offline phase's two would not fit in memory together */
   PetscCall(BoltNewmarkReleaseSolver(r->fomNm));
-  PetscCall(MatDestroy(&r->fomOp->C)); /* the FOM has run: its damping is not needed any more */
+  PetscCall(BoltOperatorReleaseDamping(r->fomOp)); /* the FOM has run: its damping is not needed any more */
   PetscCall(BoltMemoryRelease());
   PetscCall(BoltMemoryPrint(r->comm, "the FOM run (its solver released)"));
   s->fomRun = r->fomNm;

@@ -117,7 +117,7 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   {
     BoltOperator *op;
     PetscCall(BoltNewmarkGetModel(s->romRun, &op, NULL, NULL));
-    PetscCall(BoltJSONInt(j, "held_points", op->state->mayChange != NULL));
+    PetscCall(BoltJSONInt(j, "held_points", BoltOperatorState(op)->mayChange != NULL));
   }
   PetscCall(BoltNewmarkSummaryWrite(s->romRun, j, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));

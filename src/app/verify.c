@@ -46,8 +46,8 @@ PetscErrorCode BoltExportReduced(const char dir[], BoltROM *rom, BoltOperator *r
 
   PetscFunctionBeginUser;
   PetscCall(BoltROMGetMatrices(rom, &Mr, &Kr));
-  PetscCall(BoltContactStateReset(romOp->state));
-  PetscCall(romOp->ops.contactStiffness(romOp, &Kcr));
+  PetscCall(BoltContactStateReset(BoltOperatorState(romOp)));
+  PetscCall(BoltOperatorContactStiffness(romOp, &Kcr));
   PetscCall(MatDuplicate(Kr, MAT_COPY_VALUES, &Kt));
   PetscCall(MatAXPY(Kt, 1.0, Kcr, SAME_NONZERO_PATTERN));
   PetscCall(BoltExportMatrix(Kt, dir, "rom_K_tied.petsc"));

@@ -13,7 +13,7 @@
 
 static PetscErrorCode ROMProbe(BoltOperator *op, Vec q, PetscReal *value)
 {
-  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltROM           *rom = (BoltROM *)BoltOperatorContext(op);
   const PetscScalar *x;
   PetscReal          v = 0;
 
@@ -29,7 +29,7 @@ static PetscErrorCode ROMProbe(BoltOperator *op, Vec q, PetscReal *value)
 static PetscErrorCode ROMVectorsSave(BoltOperator *op, PetscViewer v, PetscInt n, const char *const names[], Vec x[])
 {
   PetscFunctionBeginUser;
-  PetscCall(BoltHDF5WriteVecs(v, op->comm, n, names, x, PETSC_TRUE));
+  PetscCall(BoltHDF5WriteVecs(v, BoltOperatorComm(op), n, names, x, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
@@ -41,8 +41,8 @@ static PetscErrorCode ROMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt n
     PetscReal   *x;
     PetscInt     n, nloc;
     PetscCall(VecGetLocalSize(y[f], &nloc));
-    PetscCall(BoltReadAll(v, op->comm, names[f], &n, &x));
-    PetscCheck(n == nloc, op->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint holds %" PetscInt_FMT " reduced coordinates, this ROM has %" PetscInt_FMT, n, nloc);
+    PetscCall(BoltReadAll(v, BoltOperatorComm(op), names[f], &n, &x));
+    PetscCheck(n == nloc, BoltOperatorComm(op), PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint holds %" PetscInt_FMT " reduced coordinates, this ROM has %" PetscInt_FMT, n, nloc);
     PetscCall(VecGetArray(y[f], &a));
     for (PetscInt i = 0; i < nloc; i++) a[i] = x[i];
     PetscCall(VecRestoreArray(y[f], &a));
@@ -55,7 +55,7 @@ static PetscErrorCode ROMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt n
    the path, so a checkpoint keeps it as it is rather than rebuilding it. */
 static PetscErrorCode ROMStateSave(BoltOperator *op, PetscViewer v)
 {
-  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltROM           *rom = (BoltROM *)BoltOperatorContext(op);
   Mat                Kc;
   const PetscScalar *a;
   PetscInt           nr;
@@ -65,11 +65,11 @@ static PetscErrorCode ROMStateSave(BoltOperator *op, PetscViewer v)
   PetscCall(ROMContactStiffness(op, &Kc));
   PetscCall(MatGetSize(Kc, &nr, NULL));
   PetscCall(MatDenseGetArrayRead(Kc, &a));
-  PetscCall(BoltHDF5WriteValues(v, op->comm, "reduced_contact_stiffness", nr * nr, 1, a, PETSC_TRUE));
+  PetscCall(BoltHDF5WriteValues(v, BoltOperatorComm(op), "reduced_contact_stiffness", nr * nr, 1, a, PETSC_TRUE));
   PetscCall(MatDenseRestoreArrayRead(Kc, &a));
   if (rom->update) { /* the grid of the reduced forces' sums: the continued run sums on it too */
     const PetscScalar grid[2] = {rom->fGridBound, rom->fGridValid ? 1.0 : 0.0};
-    PetscCall(BoltHDF5WriteValues(v, op->comm, "reduced_forces_grid", 2, 1, grid, PETSC_TRUE));
+    PetscCall(BoltHDF5WriteValues(v, BoltOperatorComm(op), "reduced_forces_grid", 2, 1, grid, PETSC_TRUE));
   }
   PetscFunctionReturn(0);
 }
@@ -77,7 +77,7 @@ static PetscErrorCode ROMStateSave(BoltOperator *op, PetscViewer v)
 /* After the contact state was restored: K_cr brought up to date, then replaced by the saved sum. */
 static PetscErrorCode ROMStateLoad(BoltOperator *op, PetscViewer v)
 {
-  BoltROM     *rom = (BoltROM *)op->ctx;
+  BoltROM     *rom = (BoltROM *)BoltOperatorContext(op);
   Mat          Kc;
   PetscScalar *a;
   PetscReal   *x;
@@ -86,8 +86,8 @@ static PetscErrorCode ROMStateLoad(BoltOperator *op, PetscViewer v)
   PetscFunctionBeginUser;
   PetscCall(ROMContactStiffness(op, &Kc));
   PetscCall(MatGetSize(Kc, &nr, NULL));
-  PetscCall(BoltReadAll(v, op->comm, "reduced_contact_stiffness", &n, &x));
-  PetscCheck(n == nr * nr, op->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint is damaged (reduced contact stiffness of %" PetscInt_FMT " values)", n);
+  PetscCall(BoltReadAll(v, BoltOperatorComm(op), "reduced_contact_stiffness", &n, &x));
+  PetscCheck(n == nr * nr, BoltOperatorComm(op), PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint is damaged (reduced contact stiffness of %" PetscInt_FMT " values)", n);
   PetscCall(MatDenseGetArray(Kc, &a));
   for (PetscInt i = 0; i < n; i++) a[i] = x[i];
   PetscCall(MatDenseRestoreArray(Kc, &a));
@@ -95,8 +95,8 @@ static PetscErrorCode ROMStateLoad(BoltOperator *op, PetscViewer v)
   PetscCall(MatAssemblyEnd(Kc, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscFree(x));
   if (rom->update) {
-    PetscCall(BoltReadAll(v, op->comm, "reduced_forces_grid", &n, &x));
-    PetscCheck(n == 2, op->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint is damaged (reduced forces' grid of %" PetscInt_FMT " values)", n);
+    PetscCall(BoltReadAll(v, BoltOperatorComm(op), "reduced_forces_grid", &n, &x));
+    PetscCheck(n == 2, BoltOperatorComm(op), PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint is damaged (reduced forces' grid of %" PetscInt_FMT " values)", n);
     rom->fGridBound  = x[0];
     rom->fGridValid  = (PetscBool)(x[1] != 0);
     rom->fPartsValid = PETSC_FALSE;
@@ -107,7 +107,7 @@ static PetscErrorCode ROMStateLoad(BoltOperator *op, PetscViewer v)
 
 static PetscErrorCode ROMView(BoltOperator *op, PetscViewer viewer)
 {
-  BoltROM *rom = (BoltROM *)op->ctx;
+  BoltROM *rom = (BoltROM *)BoltOperatorContext(op);
 
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "  reduced dimension %" PetscInt_FMT ", penalties %g x the FOM's, opening band %g x\n", rom->n, (double)rom->penaltyScale, (double)rom->bandScale));
@@ -142,7 +142,7 @@ PetscErrorCode ROMOnlineDestroy(BoltROM *rom)
 static PetscErrorCode ROMOperatorDestroy(BoltOperator *op)
 {
   PetscFunctionBeginUser;
-  PetscCall(ROMOnlineDestroy((BoltROM *)op->ctx));
+  PetscCall(ROMOnlineDestroy((BoltROM *)BoltOperatorContext(op)));
   PetscFunctionReturn(0);
 }
 
@@ -155,25 +155,23 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
 
   PetscFunctionBeginUser;
   PetscCall(BoltOperatorCreate(rom->comm, "ROM", rom->contact, &op));
-  op->solverType       = MATSOLVERPETSC;
-  op->exactConstraints = (rom->nCCM + rom->nJIM) ? PETSC_FALSE : PETSC_TRUE;
-  op->keepStructural   = PETSC_TRUE; /* n^2 values: a factorisation then adds K_cr to a copy */
-  op->state->augment   = rom->augment; /* -rom_contact_augment */
-  PetscCall(PetscStrncpy(op->prefix, "rom_", sizeof(op->prefix)));
+  /* n^2 values: a factorisation adds K_cr to a kept copy of the structural sum */
+  PetscCall(BoltOperatorSetSolver(op, "rom_", MATSOLVERPETSC, (rom->nCCM + rom->nJIM) ? PETSC_FALSE : PETSC_TRUE, PETSC_TRUE));
+  BoltOperatorState(op)->augment = rom->augment; /* -rom_contact_augment */
   PetscCall(BoltOperatorSetSystem(op, rom->Mr, NULL, rom->Kr, rom->loadr, rom->preloadr));
   PetscCall(BoltOperatorSetDamping(op, rom->Cr, rom->rayleigh[0], rom->rayleigh[1]));
-  op->ctx                      = rom;
-  op->ops.contactDisplacements = ROMContactDisplacements;
-  op->ops.contactForces        = ROMContactForces;
-  op->ops.contactStiffness     = ROMContactStiffness;
-  op->ops.probe                = ROMProbe;
-  op->ops.vectorsSave          = ROMVectorsSave;
-  op->ops.vectorsLoad          = ROMVectorsLoad;
-  op->ops.stateSave            = ROMStateSave;
-  op->ops.stateLoad            = ROMStateLoad;
-  op->ops.view                 = ROMView;
-  op->ops.destroy              = ROMOperatorDestroy;
-  PetscCall(BoltContactStateSetPenaltyScale(op->state, rom->penaltyScale, rom->bandScale));
+  PetscCall(BoltOperatorSetContext(op, rom));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_DISPLACEMENTS, (void (*)(void))ROMContactDisplacements));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_FORCES, (void (*)(void))ROMContactForces));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_STIFFNESS, (void (*)(void))ROMContactStiffness));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_PROBE, (void (*)(void))ROMProbe));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_VECTORS_SAVE, (void (*)(void))ROMVectorsSave));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_VECTORS_LOAD, (void (*)(void))ROMVectorsLoad));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_STATE_SAVE, (void (*)(void))ROMStateSave));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_STATE_LOAD, (void (*)(void))ROMStateLoad));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_VIEW, (void (*)(void))ROMView));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_DESTROY, (void (*)(void))ROMOperatorDestroy));
+  PetscCall(BoltContactStateSetPenaltyScale(BoltOperatorState(op), rom->penaltyScale, rom->bandScale));
 /* K_cr starts empty; every element is due for an update (marked with the penalties) */
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   if (!rom->sum) PetscCall(BoltExactSumCreate(&rom->sum));
@@ -204,12 +202,12 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   /* with opening shapes, only the points the opening solves changed may change state: the basis
      has no shapes to open the others, and freed they chattered at the washers' rims (the
      augmented ROM, without interface reduction, can open any pair) */
-  op->state->mayChange = (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) ? rom->marked : NULL;
-  PetscCall(ROMSetUpGapRows(rom, op->state->mayChange));
-  op->ops.contactGaps  = ROMContactGaps;
-  op->ops.openTraction = ROMOpenTraction;
+  BoltOperatorState(op)->mayChange = (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) ? rom->marked : NULL;
+  PetscCall(ROMSetUpGapRows(rom, BoltOperatorState(op)->mayChange));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_GAPS, (void (*)(void))ROMContactGaps));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_OPEN_TRACTION, (void (*)(void))ROMOpenTraction));
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
-  PetscCall(ROMSetUpPairForces(rom, op->state->mayChange));
+  PetscCall(ROMSetUpPairForces(rom, BoltOperatorState(op)->mayChange));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));
   if (rom->update) PetscCall(PetscMalloc2(2 * n + 1, &rom->fAcc, 2 * n * rom->npOwned + 1, &rom->fParts));
   rom->fGridValid = rom->fPartsValid = PETSC_FALSE;
@@ -231,7 +229,7 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
   PetscFunctionBeginUser;
   if (!rom->preloadState) PetscFunctionReturn(0);
   PetscCall(BoltNewmarkGetModel(nm, &op, NULL, NULL));
-  s = op->state;
+  s = BoltOperatorState(op);
   /* The FOM's traction at its preloaded state is lambda0 + P g0 (its penalty P on the residual
      gaps g0 its loop leaves), or lambda0 itself after the strict law's loop (its multipliers are
      already the trial tractions of its last solve); the ROM's penalty is s P, so the frozen
@@ -281,7 +279,7 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
 
   PetscFunctionBeginUser;
   /* ROM first: its contact stiffness takes the (all active, all dirty) state */
-  PetscCall(op->ops.contactStiffness(op, &Kcr));
+  PetscCall(BoltOperatorContactStiffness(op, &Kcr));
   PetscCall(MatDuplicate(rom->Kr, MAT_COPY_VALUES, &Ar));
   PetscCall(MatAXPY(Ar, s0, rom->Cr, SAME_NONZERO_PATTERN));
   PetscCall(MatAXPY(Ar, s0 * s0, rom->Mr, SAME_NONZERO_PATTERN));
@@ -306,8 +304,8 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   /* compare at the contact DOFs and the probe */
   PetscCall(BoltContactSetScatter(c, sFull->work, q));
   PetscCall(BoltContactWorkGetDisplacements(sFull->work, &ucFull));
-  PetscCall(op->ops.contactDisplacements(op, qr));
-  PetscCall(BoltContactWorkGetDisplacements(op->state->work, &ucRed));
+  PetscCall(BoltOperatorContactDisplacements(op, qr));
+  PetscCall(BoltContactWorkGetDisplacements(BoltOperatorState(op)->work, &ucRed));
   {
     const PetscScalar *a, *b;
     PetscCall(VecGetArrayRead(ucFull, &a));
@@ -322,7 +320,7 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, num, 1, MPIU_REAL, MPI_SUM, rom->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, den, 1, MPIU_REAL, MPI_SUM, rom->comm));
   PetscCall(BoltLoadSetProbe(loads, q, &pf));
-  PetscCall(op->ops.probe(op, qr, &pr));
+  PetscCall(BoltOperatorProbe(op, qr, &pr));
   *err = PetscMax(PetscSqrtReal(num[0] / den[0]), PetscAbsReal(pr - pf) / PetscAbsReal(pf));
   PetscCall(PetscPrintf(rom->comm, "ROM check at s0 = %g rad/s, tied joint: relative error %.3e at the contact DOFs, %.3e at the probe\n", (double)s0, (double)PetscSqrtReal(num[0] / den[0]), (double)(PetscAbsReal(pr - pf) / PetscAbsReal(pf))));
   PetscCall(VecDestroy(&q));

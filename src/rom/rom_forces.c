@@ -7,7 +7,7 @@
 /* u_c = V_c q, a contact DOF with the same bits on any partition. */
 PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
 {
-  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltROM           *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet    *c   = rom->contact;
   const PetscScalar *x;
   PetscScalar       *u;
@@ -15,7 +15,7 @@ PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
 
   PetscFunctionBeginUser;
   if (!c->nlocal) PetscFunctionReturn(0);
-  PetscCall(BoltContactWorkGetDisplacements(op->state->work, &uc)); /* this operator's own */
+  PetscCall(BoltContactWorkGetDisplacements(BoltOperatorState(op)->work, &uc)); /* this operator's own */
   PetscCall(VecGetArrayRead(q, &x));
   PetscCall(VecGetArray(uc, &u));
   ROMRowsTimes(c->nlocal, rom->n, rom->Vc, c->nlocal, x, u);
@@ -189,7 +189,7 @@ PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange[])
    terms, so F_r has the bits of a sum made afresh on that grid, on any number of ranks. */
 static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal lambda[], Vec F)
 {
-  BoltROM       *rom = (BoltROM *)op->ctx;
+  BoltROM       *rom = (BoltROM *)BoltOperatorContext(op);
   const PetscInt n   = rom->n;
   PetscReal      bound, *g = rom->work;
   PetscBool      fresh;
@@ -221,7 +221,7 @@ static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal 
   PetscCall(BoltExactSumEnd(rom->sum, rom->comm, y));
   PetscCall(PetscArraycpy(rom->Fr, y, n));
   PetscCall(VecRestoreArray(F, &y));
-  rom->FrVersion = op->state->version;
+  rom->FrVersion = BoltOperatorState(op)->version;
   rom->FrValid   = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -233,16 +233,16 @@ static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal 
    state's version holds: under the penalty law they are the same every step. */
 PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F)
 {
-  BoltROM       *rom = (BoltROM *)op->ctx;
+  BoltROM       *rom = (BoltROM *)BoltOperatorContext(op);
   const PetscInt n   = rom->n;
   /* the state's multipliers, with or without its anchors (a rank without anchors hands lambda
      itself): a decision every rank takes alike, as the cache skips reductions */
-  const PetscBool own = (PetscBool)(lambda == op->state->lambda || lambda == op->state->lambdaForce);
+  const PetscBool own = (PetscBool)(lambda == BoltOperatorState(op)->lambda || lambda == BoltOperatorState(op)->lambdaForce);
   PetscReal       bound, *g = rom->work;
   PetscScalar    *y;
 
   PetscFunctionBeginUser;
-  if (own && rom->FrValid && rom->FrVersion == op->state->version) {
+  if (own && rom->FrValid && rom->FrVersion == BoltOperatorState(op)->version) {
     PetscCall(VecGetArray(F, &y));
     PetscCall(PetscArraycpy(y, rom->Fr, n));
     PetscCall(VecRestoreArray(F, &y));
@@ -262,7 +262,7 @@ PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec 
   PetscCall(BoltExactSumEnd(rom->sum, rom->comm, y));
   if (own) {
     PetscCall(PetscArraycpy(rom->Fr, y, n));
-    rom->FrVersion = op->state->version;
+    rom->FrVersion = BoltOperatorState(op)->version;
     rom->FrValid   = PETSC_TRUE;
   }
   PetscCall(VecRestoreArray(F, &y));

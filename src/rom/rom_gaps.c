@@ -13,16 +13,16 @@
    model. */
 PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
 {
-  BoltROM           *rom = (BoltROM *)op->ctx;
+  BoltROM           *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet    *c   = rom->contact;
   const PetscScalar *x;
   PetscBool          whole;
   PetscReal          xmax = 0;
 
   PetscFunctionBeginUser;
-  if (op->state->augment) {
+  if (BoltOperatorState(op)->augment) {
     PetscCall(ROMContactDisplacements(op, q));
-    PetscCall(BoltContactSetGapsOf(c, op->state->work, gap));
+    PetscCall(BoltContactSetGapsOf(c, BoltOperatorState(op)->work, gap));
     PetscFunctionReturn(0);
   }
   if (rom->pairGaps) { /* the owned pairs' gaps (the held ones once), sent to their points */
@@ -60,7 +60,7 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
          node pair's rows of D_e in a fixed order (the same bits on any partition). Only where it
          may close: elsewhere the decision -g.n > activationGap is the same with the normal gap
          alone, whose rounding differs from the whole gap's by less than the bound. */
-      if (whole && !op->state->active[gp] && (rom->gapsEverywhere || ((!op->state->mayChange || op->state->mayChange[gp]) && -gn > op->state->activationGap - rom->wholeGapBound[gp] * xmax))) {
+      if (whole && !BoltOperatorState(op)->active[gp] && (rom->gapsEverywhere || ((!BoltOperatorState(op)->mayChange || BoltOperatorState(op)->mayChange[gp]) && -gn > BoltOperatorState(op)->activationGap - rom->wholeGapBound[gp] * xmax))) {
         PetscScalar whole3[3];
         ROMRowsTimes(3, rom->n, &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)], 12, x, whole3);
         for (PetscInt k = 0; k < 3; k++) g[k] = PetscRealPart(whole3[k]);
@@ -86,9 +86,9 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
    the state, and are made again (collectively) when its version moves. */
 PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
 {
-  BoltROM          *rom = (BoltROM *)op->ctx;
+  BoltROM          *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet   *c   = rom->contact;
-  BoltContactState *s   = op->state;
+  BoltContactState *s   = BoltOperatorState(op);
   const PetscInt    ngp = 4 * c->nelem;
 
   PetscFunctionBeginUser;

@@ -141,9 +141,9 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
 
 PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
 {
-  BoltROM          *rom = (BoltROM *)op->ctx;
+  BoltROM          *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet   *c   = rom->contact;
-  BoltContactState *s   = op->state;
+  BoltContactState *s   = BoltOperatorState(op);
   const PetscInt  n   = rom->n;
   PetscInt        ndirty = 0, *dirty = rom->dirtyElems;
   PetscReal       bound = 0, *delta = rom->dMe, *T = rom->work2, *dK = rom->dK, Knew[576];

@@ -91,12 +91,17 @@ static PetscErrorCode ROMReferenceMake(BoltROM *rom, BoltOperator *op, BoltDual 
     PetscCall(PetscMalloc3(3 * rom->n * u->alloc, &ref->U, 3 * rom->n * u->alloc, &ref->Z, 9 * u->alloc * u->alloc, &ref->G));
   }
   for (PetscInt e = 0; e < ne; e++) {
-    if (u->devRun[e]) op->state->dirty[e] = PETSC_TRUE;
+    if (u->devRun[e]) BoltOperatorState(op)->dirty[e] = PETSC_TRUE;
     u->devRun[e] = PETSC_FALSE;
   }
   rom->KcrValid = PETSC_FALSE; /* its version may have been taken while the flags were held here */
-  if (!ref->A) PetscCall(MatDuplicate(op->K, MAT_DO_NOT_COPY_VALUES, &ref->A));
-  if (!ref->ksp) PetscCall(BoltDirectSolverCreate(PETSC_COMM_SELF, op->prefix, NULL, PETSC_FALSE, op->solverType, &ref->ksp));
+  if (!ref->A) PetscCall(MatDuplicate(BoltOperatorStiffness(op), MAT_DO_NOT_COPY_VALUES, &ref->A));
+  if (!ref->ksp) {
+    const char   *prefix;
+    MatSolverType type;
+    PetscCall(BoltOperatorGetSolver(op, &prefix, &type));
+    PetscCall(BoltDirectSolverCreate(PETSC_COMM_SELF, prefix, NULL, PETSC_FALSE, type, &ref->ksp));
+  }
   PetscCall(BoltDualFactorInto(d, ref->A, ref->ksp)); /* K_cr brought to the current state there */
   PetscCall(PetscArraycpy(ref->Ke, u->Kcur, 144 * ne));
   for (PetscInt e = 0; e < ne; e++) ref->dev[e] = PETSC_FALSE;
@@ -291,10 +296,10 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
    else a new reference. */
 static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
 {
-  BoltROM          *rom = (BoltROM *)op->ctx;
+  BoltROM          *rom = (BoltROM *)BoltOperatorContext(op);
   BoltROMUpdate    *u   = rom->update;
   BoltContactSet   *c   = rom->contact;
-  BoltContactState *s   = op->state;
+  BoltContactState *s   = BoltOperatorState(op);
   PetscInt          slots[ROM_REFERENCES], order[ROM_REFERENCES], nvalid = 0;
   PetscReal         Knew[576];
   PetscLogDouble    t0, t1;
@@ -372,7 +377,7 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
 /* x = A^-1 b: the reference's solve, corrected. */
 static PetscErrorCode ROMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x)
 {
-  BoltROM       *rom = (BoltROM *)op->ctx;
+  BoltROM       *rom = (BoltROM *)BoltOperatorContext(op);
   BoltROMUpdate *u   = rom->update;
   const PetscInt n = rom->n, k = u->k, m = 3 * k;
   PetscScalar   *xa;
@@ -408,7 +413,7 @@ static PetscErrorCode ROMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x
    as a run continued from the checkpoint (which factorises what it restores) will have it. */
 PetscErrorCode BoltROMUpdateSettle(BoltOperator *op)
 {
-  BoltROM       *rom = (BoltROM *)op->ctx;
+  BoltROM       *rom = (BoltROM *)BoltOperatorContext(op);
   BoltROMUpdate *u   = rom->update;
 
   PetscFunctionBeginUser;
@@ -447,8 +452,8 @@ PetscErrorCode BoltROMUpdateCreate(BoltROM *rom, BoltOperator *op, PetscInt maxR
   PetscCall(PetscMalloc5(u->alloc, &u->act, u->alloc, &u->first, u->alloc, &u->last, u->alloc, &u->node, 36 * u->alloc, &u->S));
   PetscCall(PetscMalloc4(9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w, 3 * u->alloc, &u->piv));
   rom->update    = u;
-  op->ops.factor = ROMUpdateFactor;
-  op->ops.solve  = ROMUpdateSolve;
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_FACTOR, (void (*)(void))ROMUpdateFactor));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_SOLVE, (void (*)(void))ROMUpdateSolve));
   PetscFunctionReturn(0);
 }
 

@@ -21,14 +21,14 @@ static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBas
     PetscReal nf;
     PetscCall(MatMult(M, k ? out[k - 1] : w0, work));
     PetscCall(VecNorm(work, NORM_2, &nf));
-    PetscCheck(nf > 0, op->comm, PETSC_ERR_NOT_CONVERGED, "%s Krylov vector %" PetscInt_FMT " is zero", what, k + 1);
+    PetscCheck(nf > 0, BoltOperatorComm(op), PETSC_ERR_NOT_CONVERGED, "%s Krylov vector %" PetscInt_FMT " is zero", what, k + 1);
     PetscCall(VecScale(work, (nforce > 0 ? nforce : 1.0) / nf));
     PetscCall(VecCopy(base, rhs));
     PetscCall(VecAXPY(rhs, 1.0, work));
     PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
     PetscCall(VecDuplicate(q, &out[k]));
     PetscCall(VecWAXPY(out[k], -1.0, qBase, q));
-    PetscCall(PetscPrintf(op->comm, "ROM: %s Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", what, k + 1, nout, nin, op->state->nactive));
+    PetscCall(PetscPrintf(BoltOperatorComm(op), "ROM: %s Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", what, k + 1, nout, nin, BoltOperatorState(op)->nactive));
   }
   PetscFunctionReturn(0);
 }
@@ -61,22 +61,12 @@ static void BoltMarkBeyondCone(BoltContactState *s, PetscBool mark[])
     if (s->active[gp] && BoltConeFraction(c, gp, &s->lambda[3 * gp], NULL) > 1) mark[gp] = PETSC_TRUE;
 }
 
-/* *v becomes a copy of src of its own (an operator's vector that a calibration may scale). */
-static PetscErrorCode BoltVecReplaceByCopy(Vec src, Vec *v)
-{
-  PetscFunctionBeginUser;
-  PetscCall(VecDestroy(v));
-  PetscCall(VecDuplicate(src, v));
-  PetscCall(VecCopy(src, *v));
-  PetscFunctionReturn(0);
-}
-
 /* The FOM's preloaded state on the offline operator op (handed over, or solved as the FOM's
    time integrator would), kept per newton of preload in rom (multipliers, raw gaps, active
    set) and as the first static shape; the operator's penalties then scaled for the solves. */
 static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, BoltOperator *op, PetscReal staticPenaltyScale, const BoltPreloadState *shared, Vec q, Vec rhs, Vec *start, Vec *preload)
 {
-  BoltContactState *s = op->state;
+  BoltContactState *s = BoltOperatorState(op);
   PetscReal         F = BoltLoadSetPreloadForce(loads), outer, inner;
   PetscInt          nout, nin;
 
@@ -96,12 +86,12 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
     PetscCall(PetscOptionsGetBool(NULL, NULL, "-preload_calibrate", &calibrate, NULL));
     PetscCall(PetscOptionsGetBool(NULL, NULL, "-static_contact_load", &withLoad, NULL));
     PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &fom));
-    PetscCall(BoltVecReplaceByCopy(op->preload, &fom->preload));
+    PetscCall(BoltOperatorCopyLoads(fom, NULL, BoltOperatorPreloadVec(op)));
     PetscCall(BoltDualCreate(fom, &fomDual));
     PetscCall(BoltDualSetFromOptions(fomDual));
     PetscCall(BoltDualSetUp(fomDual));
-    PetscCall(VecCopy(fom->preload, rhs));
-    if (withLoad) PetscCall(VecAXPY(rhs, 1.0, op->load));
+    PetscCall(VecCopy(BoltOperatorPreloadVec(fom), rhs));
+    if (withLoad) PetscCall(VecAXPY(rhs, 1.0, BoltOperatorLoadVec(op)));
     PetscCall(BoltDualSolveStatic(fomDual, rhs, q, calibrate && !withLoad ? F : 0, &nout, &nin));
     outer = nout;
     inner = nin;
@@ -117,8 +107,8 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
   s->stickOnly = PETSC_TRUE;
   PetscCall(VecDuplicate(q, &*start));
   PetscCall(VecCopy(q, *start));
-  PetscCall(VecDuplicate(op->preload, preload));
-  PetscCall(VecCopy(op->preload, *preload));
+  PetscCall(VecDuplicate(BoltOperatorPreloadVec(op), preload));
+  PetscCall(VecCopy(BoltOperatorPreloadVec(op), *preload));
   PetscCall(PetscMalloc4(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0, 4 * c->nelem + 1, &rom->released0));
   PetscCall(BoltContactSetScatter(c, s->work, *start));
   PetscCall(BoltContactStateGaps(s));
@@ -143,7 +133,7 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
    joint's low-frequency static shapes (openK). Leaves the + solve's state in the dual loop. */
 static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, BoltROM *rom, BoltOperator *op, BoltDual *dual, PetscReal openingScale, PetscReal raise, PetscReal npre, PetscInt nOpenKrylov, Vec q, Vec rhs, Vec response, PetscInt *npairsOut, PetscInt **pairsOut, Vec **openKOut)
 {
-  BoltContactState *s = op->state;
+  BoltContactState *s = BoltOperatorState(op);
   PetscBool        *changed;
   PetscInt          nout, nin, npairs = 0, *pairs = NULL;
   Vec              *openK = NULL;
@@ -157,14 +147,14 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
      dissipation per cycle; at four times, 0.3 %) */
   if (BoltContactStateHasFriction(s) && rom->slipScale > 0 && rom->slipScale != openingScale)
     for (PetscInt sign = -1; sign <= 1; sign += 2) {
-      PetscCall(VecCopy(op->preload, rhs));
-      PetscCall(VecAXPY(rhs, sign * rom->slipScale / raise, op->load));
+      PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
+      PetscCall(VecAXPY(rhs, sign * rom->slipScale / raise, BoltOperatorLoadVec(op)));
       PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
       BoltMarkBeyondCone(s, changed);
     }
   for (PetscInt sign = -1; sign <= 1; sign += 2) {
-    PetscCall(VecCopy(op->preload, rhs));
-    PetscCall(VecAXPY(rhs, sign * openingScale / raise, op->load));
+    PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
+    PetscCall(VecAXPY(rhs, sign * openingScale / raise, BoltOperatorLoadVec(op)));
     PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
     for (PetscInt k = 0; k < 4 * c->nelem; k++) changed[k] = (PetscBool)(changed[k] || s->active[k] != rom->active0[k]);
     if (BoltContactStateHasFriction(s)) BoltMarkBeyondCone(s, changed);
@@ -184,7 +174,7 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
     PetscCall(VecCopy(q, q2));
     PetscCall(PetscMalloc1(nOpenKrylov, &openK));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
-    PetscCall(BoltStaticKrylov(dual, op->M, base, q2, response, 1e-3 * npre, nOpenKrylov, "opened-joint", work, rhs, q, openK));
+    PetscCall(BoltStaticKrylov(dual, BoltOperatorMass(op), base, q2, response, 1e-3 * npre, nOpenKrylov, "opened-joint", work, rhs, q, openK));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_FALSE));
     PetscCall(VecDestroy(&base));
     PetscCall(VecDestroy(&q2));
@@ -237,7 +227,7 @@ static PetscErrorCode ROMConePairs(BoltContactSet *c, BoltROM *rom, PetscInt *nC
    the static shapes with the opened-joint shapes after them. */
 static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOperator *op, BoltDual *dual, PetscBool keepActive, PetscInt nClosed, PetscInt npairs, const PetscInt pairs[], PetscInt nConePairs, const PetscInt conePairs[], const PetscReal coneDirs[], PetscInt nOpenKrylov, Vec openK[], PetscInt nsnap, Vec snap[], Vec q, Vec rhs, PetscInt *nextra, Vec **extrap)
 {
-  BoltContactState *s     = op->state;
+  BoltContactState *s     = BoltOperatorState(op);
   Vec              *extra = *extrap, *all;
   PetscInt          nout, nin, ncone = 0;
   KSP               ksp;
@@ -250,7 +240,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
   if (!(keepActive && nClosed > 0)) { /* else the closed-contact vectors' last solve factored K + K_c of the preloaded set */
     PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
-    PetscCall(BoltDualSolveStatic(dual, op->preload, q, 0, &nout, &nin));
+    PetscCall(BoltDualSolveStatic(dual, BoltOperatorPreloadVec(op), q, 0, &nout, &nin));
   }
   PetscCall(BoltDualGetSolver(dual, NULL, &ksp)); /* factored by the last solve */
   for (PetscInt i = 0; i < npairs; i++)
@@ -311,16 +301,15 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(2 + nClosed, &extra));
   PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &op)); /* static solves only: no damping */
-  s = op->state;
+  s = BoltOperatorState(op);
   /* the calibration scales the preload vector and the load response may scale the load: work
      on copies, the scene's stay as they are */
-  PetscCall(BoltVecReplaceByCopy(BoltLoadSetPreload(loads), &op->preload));
-  PetscCall(BoltVecReplaceByCopy(BoltLoadSetLoad(loads), &op->load));
+  PetscCall(BoltOperatorCopyLoads(op, BoltLoadSetLoad(loads), BoltLoadSetPreload(loads)));
   PetscCall(BoltDualCreate(op, &dual));
   PetscCall(BoltDualSetFromOptions(dual));
   PetscCall(BoltDualSetUp(dual));
-  PetscCall(VecDuplicate(op->preload, &q));
-  PetscCall(VecDuplicate(op->preload, &rhs));
+  PetscCall(VecDuplicate(BoltOperatorPreloadVec(op), &q));
+  PetscCall(VecDuplicate(BoltOperatorPreloadVec(op), &rhs));
   PetscCall(ROMPreloadedStart(asmb, c, loads, rom, op, staticPenaltyScale, shared, q, rhs, &extra[0], preload));
   /* the load on top, from the preloaded state (multipliers warm, active set free to change).
      The contact loop's tolerance is relative to the preload's multipliers, so a load below
@@ -328,12 +317,12 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
      residual; with the joint closed the response is linear in the load, and the scale is lost
      in the orthonormalisation anyway) */
   PetscReal nload, npre, raise;
-  PetscCall(VecNorm(op->load, NORM_2, &nload));
-  PetscCall(VecNorm(op->preload, NORM_2, &npre));
+  PetscCall(VecNorm(BoltOperatorLoadVec(op), NORM_2, &nload));
+  PetscCall(VecNorm(BoltOperatorPreloadVec(op), NORM_2, &npre));
   raise = nload > 0 ? PetscMax(1.0, 1e-3 * npre / nload) : 1.0;
-  PetscCall(VecScale(op->load, raise));
-  PetscCall(VecCopy(op->preload, rhs));
-  PetscCall(VecAXPY(rhs, 1.0, op->load));
+  PetscCall(VecScale(BoltOperatorLoadVec(op), raise));
+  PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
+  PetscCall(VecAXPY(rhs, 1.0, BoltOperatorLoadVec(op)));
   PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
   PetscCall(VecDuplicate(q, &extra[1]));
   PetscCall(VecWAXPY(extra[1], -1.0, extra[0], q));
@@ -366,8 +355,8 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
       PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
       PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     }
-    /* op->load, this solve's own copy, is the forcing of each vector in turn */
-    PetscCall(BoltStaticKrylov(dual, op->M, op->preload, extra[0], extra[1], nforce, nClosed, "closed-contact", op->load, rhs, q, &extra[2]));
+    /* BoltOperatorLoadVec(op), this solve's own copy, is the forcing of each vector in turn */
+    PetscCall(BoltStaticKrylov(dual, BoltOperatorMass(op), BoltOperatorPreloadVec(op), extra[0], extra[1], nforce, nClosed, "closed-contact", BoltOperatorLoadVec(op), rhs, q, &extra[2]));
   }
   *nextra = 2 + nClosed;
   /* Each opening shape is the preloaded joint's static response to a unit force pair on one of

@@ -69,8 +69,7 @@ PetscErrorCode BoltNewmarkGetLoad(BoltNewmark *nm, BoltLoadHistory *history, Pet
   PetscFunctionReturn(0);
 }
 
-/* The checkpoints' base name (set before SetFromOptions, which may change it) and their
-   interval (0: none). */
+/* The checkpoints' base name (set before SetFromOptions, which -checkpoint_file may change). */
 PetscErrorCode BoltNewmarkSetCheckpointBase(BoltNewmark *nm, const char base[])
 {
   PetscFunctionBeginUser;
@@ -78,11 +77,23 @@ PetscErrorCode BoltNewmarkSetCheckpointBase(BoltNewmark *nm, const char base[])
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltNewmarkGetCheckpoint(BoltNewmark *nm, const char *base[], PetscInt *every)
+/* The time integrator's options read before any model exists (the FOM's and the ROM's read the
+   same ones): a wrong one stops the run at once. checkpointBase: the checkpoints' base name
+   (base unless -checkpoint_file) if they are written, else "". */
+PetscErrorCode BoltNewmarkOptionsCheck(MPI_Comm comm, const char base[], char checkpointBase[])
 {
+  BoltOperator stub = {0}; /* the options need no model */
+  BoltNewmark *nm;
+
   PetscFunctionBeginUser;
-  *base  = nm->checkpointBase;
-  *every = nm->checkpointEvery;
+  stub.comm = comm;
+  stub.name = "FOM";
+  PetscCall(PetscStrncpy(stub.prefix, "fom_", sizeof(stub.prefix)));
+  PetscCall(BoltNewmarkCreate(&stub, &nm));
+  PetscCall(BoltNewmarkSetCheckpointBase(nm, base));
+  PetscCall(BoltNewmarkSetFromOptions(nm));
+  PetscCall(PetscStrncpy(checkpointBase, nm->checkpointEvery > 0 ? nm->checkpointBase : "", PETSC_MAX_PATH_LEN));
+  PetscCall(BoltNewmarkDestroy(&nm));
   PetscFunctionReturn(0);
 }
 

@@ -48,6 +48,140 @@ PetscErrorCode BoltOperatorSetDamping(BoltOperator *op, Mat C, PetscReal alpha, 
   PetscFunctionReturn(0);
 }
 
+/* The model's solver: its options prefix, its direct solver, whether every contact gap can be
+   closed, whether the loop keeps K + a1 M + a4 C summed (small dense matrices). */
+PetscErrorCode BoltOperatorSetSolver(BoltOperator *op, const char prefix[], MatSolverType type, PetscBool exactConstraints, PetscBool keepStructural)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(op->prefix, prefix, sizeof(op->prefix)));
+  op->solverType       = type;
+  op->exactConstraints = exactConstraints;
+  op->keepStructural   = keepStructural;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BoltOperatorGetSolver(BoltOperator *op, const char *prefix[], MatSolverType *type)
+{
+  PetscFunctionBeginUser;
+  if (prefix) *prefix = op->prefix;
+  if (type) *type = op->solverType;
+  PetscFunctionReturn(0);
+}
+
+/* One operation of the model's table (BOLT_OP_*), the way PETSc's shell matrices take theirs. */
+PetscErrorCode BoltOperatorSetOperation(BoltOperator *op, BoltOperatorOp which, void (*fn)(void))
+{
+  PetscFunctionBeginUser;
+  switch (which) {
+  case BOLT_OP_CONTACT_DISPLACEMENTS: op->ops.contactDisplacements = (PetscErrorCode(*)(BoltOperator *, Vec))fn; break;
+  case BOLT_OP_CONTACT_FORCES: op->ops.contactForces = (PetscErrorCode(*)(BoltOperator *, const PetscReal[], Vec))fn; break;
+  case BOLT_OP_CONTACT_STIFFNESS: op->ops.contactStiffness = (PetscErrorCode(*)(BoltOperator *, Mat *))fn; break;
+  case BOLT_OP_CONTACT_GAPS: op->ops.contactGaps = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal[]))fn; break;
+  case BOLT_OP_OPEN_TRACTION: op->ops.openTraction = (PetscErrorCode(*)(BoltOperator *, PetscReal[]))fn; break;
+  case BOLT_OP_PROBE: op->ops.probe = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal *))fn; break;
+  case BOLT_OP_VECTORS_SAVE: op->ops.vectorsSave = (PetscErrorCode(*)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]))fn; break;
+  case BOLT_OP_VECTORS_LOAD: op->ops.vectorsLoad = (PetscErrorCode(*)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[], PetscInt *))fn; break;
+  case BOLT_OP_STATE_SAVE: op->ops.stateSave = (PetscErrorCode(*)(BoltOperator *, PetscViewer))fn; break;
+  case BOLT_OP_STATE_LOAD: op->ops.stateLoad = (PetscErrorCode(*)(BoltOperator *, PetscViewer))fn; break;
+  case BOLT_OP_VIEW: op->ops.view = (PetscErrorCode(*)(BoltOperator *, PetscViewer))fn; break;
+  case BOLT_OP_DESTROY: op->ops.destroy = (PetscErrorCode(*)(BoltOperator *))fn; break;
+  case BOLT_OP_FACTOR: op->ops.factor = (PetscErrorCode(*)(BoltOperator *, BoltDual *))fn; break;
+  case BOLT_OP_SOLVE: op->ops.solve = (PetscErrorCode(*)(BoltOperator *, BoltDual *, Vec, Vec))fn; break;
+  default: SETERRQ(op->comm, PETSC_ERR_ARG_OUTOFRANGE, "Unknown operator operation %d", (int)which);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The operations others call on a model. */
+PetscErrorCode BoltOperatorContactDisplacements(BoltOperator *op, Vec q)
+{
+  return (*op->ops.contactDisplacements)(op, q);
+}
+
+PetscErrorCode BoltOperatorContactStiffness(BoltOperator *op, Mat *Kc)
+{
+  return (*op->ops.contactStiffness)(op, Kc);
+}
+
+PetscErrorCode BoltOperatorProbe(BoltOperator *op, Vec q, PetscReal *value)
+{
+  return (*op->ops.probe)(op, q, value);
+}
+
+/* The model's context (its implementation's data) and what the others read of it. */
+PetscErrorCode BoltOperatorSetContext(BoltOperator *op, void *ctx)
+{
+  PetscFunctionBeginUser;
+  op->ctx = ctx;
+  PetscFunctionReturn(0);
+}
+
+void *BoltOperatorContext(BoltOperator *op)
+{
+  return op->ctx;
+}
+
+BoltContactState *BoltOperatorState(BoltOperator *op)
+{
+  return op->state;
+}
+
+BoltContactSet *BoltOperatorContact(BoltOperator *op)
+{
+  return op->contact;
+}
+
+MPI_Comm BoltOperatorComm(BoltOperator *op)
+{
+  return op->comm;
+}
+
+Mat BoltOperatorMass(BoltOperator *op)
+{
+  return op->M;
+}
+
+Mat BoltOperatorStiffness(BoltOperator *op)
+{
+  return op->K;
+}
+
+/* Frees the damping matrix once the model has run (the Rayleigh coefficients stay). */
+PetscErrorCode BoltOperatorReleaseDamping(BoltOperator *op)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&op->C));
+  PetscFunctionReturn(0);
+}
+
+Vec BoltOperatorLoadVec(BoltOperator *op)
+{
+  return op->load;
+}
+
+Vec BoltOperatorPreloadVec(BoltOperator *op)
+{
+  return op->preload;
+}
+
+/* The load and preload become copies of the given vectors, the operator's own (a solve that
+   scales them leaves the originals as they are). */
+PetscErrorCode BoltOperatorCopyLoads(BoltOperator *op, Vec load, Vec preload)
+{
+  PetscFunctionBeginUser;
+  if (load) {
+    PetscCall(VecDestroy(&op->load));
+    PetscCall(VecDuplicate(load, &op->load));
+    PetscCall(VecCopy(load, op->load));
+  }
+  if (preload) {
+    PetscCall(VecDestroy(&op->preload));
+    PetscCall(VecDuplicate(preload, &op->preload));
+    PetscCall(VecCopy(preload, op->preload));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltOperatorView(BoltOperator *op, PetscViewer viewer)
 {
   PetscInt n;
