@@ -105,12 +105,7 @@ PetscErrorCode BoltAssemblerDestroy(BoltAssembler **);
 
 /* ------------------------------------------------------------------ contact.c */
 /* A contact element: two matching quad faces, a and b. Only the owner of face a keeps it. */
-typedef struct {
-  PetscInt  pair;
-  PetscInt  key;      /* face a's number in the mesh as read: names the element on any ranks */
-  PetscReal Xa[12];
-  PetscInt  dofs[24]; /* global DOFs of [a nodes, b nodes], -1 where clamped */
-} BoltContactElement;
+typedef struct _n_BoltContactElement BoltContactElement;
 
 enum { BOLT_OPEN_NODAL = 0, BOLT_OPEN_GAUSS = 1 };
 enum { BOLT_QUADRATURE_GAUSS = 0, BOLT_QUADRATURE_NODAL = 1 };
@@ -228,6 +223,10 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *);
 PetscErrorCode BoltContactSetSetUp(BoltContactSet *);
 PetscErrorCode BoltContactSetSetUpQuadrature(BoltContactSet *, Vec);
 PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *);
+PetscInt         BoltContactSetElementPair(const BoltContactSet *, PetscInt);
+PetscInt         BoltContactSetElementKey(const BoltContactSet *, PetscInt);
+const PetscInt  *BoltContactSetElementDofs(const BoltContactSet *, PetscInt);
+const PetscReal *BoltContactSetElementCoordinates(const BoltContactSet *, PetscInt);
 /* The work space of one model's contact computations (each contact state owns one, so the FOM's
    and the ROM's never share): the local contact displacements and forces, and nodal sums. */
 typedef struct _n_BoltContactWork BoltContactWork;

@@ -87,4 +87,11 @@ struct _n_BoltContactWork {
   PetscReal *tau;             /* 3 per point: tractions being turned into forces or smoothed */
 };
 
+struct _n_BoltContactElement {
+  PetscInt  pair;
+  PetscInt  key;      /* face a's number in the mesh as read: names the element on any ranks */
+  PetscReal Xa[12];
+  PetscInt  dofs[24]; /* global DOFs of [a nodes, b nodes], -1 where clamped */
+};
+
 #endif

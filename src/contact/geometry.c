@@ -412,3 +412,26 @@ PetscErrorCode BoltContactSetDestroy(BoltContactSet **cs)
   PetscCall(PetscFree(*cs));
   PetscFunctionReturn(0);
 }
+
+/* What the other modules read of element e (local): its pair, its key (face a's number in the
+   mesh as read: it names the element on any partition), its 24 global DOFs (side a's four
+   nodes, then side b's; -1 where held) and side a's corner coordinates (12). */
+PetscInt BoltContactSetElementPair(const BoltContactSet *c, PetscInt e)
+{
+  return c->elem[e].pair;
+}
+
+PetscInt BoltContactSetElementKey(const BoltContactSet *c, PetscInt e)
+{
+  return c->elem[e].key;
+}
+
+const PetscInt *BoltContactSetElementDofs(const BoltContactSet *c, PetscInt e)
+{
+  return c->elem[e].dofs;
+}
+
+const PetscReal *BoltContactSetElementCoordinates(const BoltContactSet *c, PetscInt e)
+{
+  return c->elem[e].Xa;
+}

@@ -178,7 +178,7 @@ PetscErrorCode BoltInterfaceBuild(BoltContactSet *c, Mat M, Mat C, Mat K, PetscR
   PetscCall(VecZeroEntries(mark));
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt k = 0; k < 24; k++)
-      if (c->elem[e].dofs[k] >= 0) PetscCall(VecSetValue(mark, c->elem[e].dofs[k], k < 12 ? 1.0 : -1.0, INSERT_VALUES));
+      if (BoltContactSetElementDofs(c, e)[k] >= 0) PetscCall(VecSetValue(mark, BoltContactSetElementDofs(c, e)[k], k < 12 ? 1.0 : -1.0, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(mark));
   PetscCall(VecAssemblyEnd(mark));
   PetscCall(VecGetOwnershipRange(mark, &rstart, &rend));

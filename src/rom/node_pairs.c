@@ -24,8 +24,8 @@ PetscErrorCode BoltNodePairsDirected(BoltContactSet *c, const PetscBool mask[], 
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4; a++) {
       if (mask && !mask[4 * e + a]) continue;
-      pairs[2 * nloc]     = c->elem[e].dofs[3 * a];
-      pairs[2 * nloc + 1] = c->elem[e].dofs[12 + 3 * a];
+      pairs[2 * nloc]     = BoltContactSetElementDofs(c, e)[3 * a];
+      pairs[2 * nloc + 1] = BoltContactSetElementDofs(c, e)[12 + 3 * a];
       if (pointDir)
         for (PetscInt d = 0; d < m; d++) dirs[m * nloc + d] = pointDir[m * (4 * e + a) + d];
       nloc++;

@@ -17,7 +17,7 @@ static PetscErrorCode BoltOwnedContactDofs(BoltContactSet *c, Vec layout, PetscI
   PetscCall(VecZeroEntries(mark));
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt k = 0; k < 24; k++)
-      if (c->elem[e].dofs[k] >= 0) PetscCall(VecSetValue(mark, c->elem[e].dofs[k], 1.0, INSERT_VALUES));
+      if (BoltContactSetElementDofs(c, e)[k] >= 0) PetscCall(VecSetValue(mark, BoltContactSetElementDofs(c, e)[k], 1.0, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(mark));
   PetscCall(VecAssemblyEnd(mark));
   PetscCall(VecGetOwnershipRange(mark, &rstart, &rend));
@@ -97,7 +97,7 @@ static PetscErrorCode BoltROMSavePreloadState(BoltROM *rom, PetscViewer v)
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(BOLT_ROM_STATE * c->nelem + 1, &buf));
-  for (PetscInt e = 0; e < c->nelem; e++) buf[e] = c->elem[e].key;
+  for (PetscInt e = 0; e < c->nelem; e++) buf[e] = BoltContactSetElementKey(c, e);
   PetscCall(BoltHDF5WriteValues(v, rom->comm, "state_keys", c->nelem, 1, buf, PETSC_FALSE));
   for (PetscInt e = 0; e < c->nelem; e++) {
     for (PetscInt i = 0; i < 12; i++) buf[BOLT_ROM_STATE * e + i] = rom->lambda0[12 * e + i];
@@ -127,8 +127,8 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
   PetscCall(PetscMalloc1(4 * c->nelem + 1, &rom->marked));
   for (PetscInt e = 0; e < c->nelem; e++) {
     PetscInt row;
-    PetscCall(BoltKeyIndexFind(ix, c->elem[e].key, &row));
-    PetscCheck(row >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for contact element %" PetscInt_FMT ": rebuild it with -rom_rebuild", file, c->elem[e].key);
+    PetscCall(BoltKeyIndexFind(ix, BoltContactSetElementKey(c, e), &row));
+    PetscCheck(row >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for contact element %" PetscInt_FMT ": rebuild it with -rom_rebuild", file, BoltContactSetElementKey(c, e));
     for (PetscInt i = 0; i < 12; i++) rom->lambda0[12 * e + i] = x[BOLT_ROM_STATE * row + i];
     for (PetscInt i = 0; i < 12; i++) rom->gap0[12 * e + i] = x[BOLT_ROM_STATE * row + 12 + i];
     for (PetscInt i = 0; i < 4; i++) {

@@ -89,10 +89,10 @@ PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange[])
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt a = 0; a < 4; a++) {
       PetscInt *r = &recs[6 * nmine];
-      if (c->elem[e].dofs[3 * a] < 0 && c->elem[e].dofs[12 + 3 * a] < 0) continue; /* both nodes clamped */
-      r[0] = c->elem[e].dofs[12 + 3 * a];
-      r[1] = c->elem[e].dofs[3 * a];
-      r[2] = 4 * c->elem[e].key + a;
+      if (BoltContactSetElementDofs(c, e)[3 * a] < 0 && BoltContactSetElementDofs(c, e)[12 + 3 * a] < 0) continue; /* both nodes clamped */
+      r[0] = BoltContactSetElementDofs(c, e)[12 + 3 * a];
+      r[1] = BoltContactSetElementDofs(c, e)[3 * a];
+      r[2] = 4 * BoltContactSetElementKey(c, e) + a;
       r[3] = rank;
       r[4] = 12 * e + 3 * a; /* its forces in felem */
       r[5] = !mayChange || mayChange[4 * e + a];

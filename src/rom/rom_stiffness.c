@@ -102,7 +102,7 @@ static PetscErrorCode ROMContactStiffnessNodePairs(BoltROM *rom, PetscInt ndirty
         }
       if (!changed) continue;
       r[0] = (PetscReal)rom->npOfPoint[4 * e + a];
-      r[1] = (PetscReal)(4 * c->elem[e].key + a);
+      r[1] = (PetscReal)(4 * BoltContactSetElementKey(c, e) + a);
       for (PetscInt p = 0; p < 3; p++)
         for (PetscInt q = 0; q < 3; q++) r[2 + 3 * p + q] = d[12 * (3 * a + p) + 3 * a + q];
       nsend += recLen;

@@ -192,7 +192,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
       const PetscReal *cur = &u->Kcur[144 * e], *ke = &ref->Ke[144 * e];
       PetscReal       *r0  = &u->send[nsend];
       if (!ROMSlotDiffers(cur, ke, a)) continue;
-      r0[0] = (PetscReal)(4 * c->elem[e].key + a);
+      r0[0] = (PetscReal)(4 * BoltContactSetElementKey(c, e) + a);
       r0[1] = (PetscReal)ref->slotOf[4 * e + a];
       r0[2] = (PetscReal)rom->npOfPoint[4 * e + a];
       for (PetscInt q = 0; q < 3; q++)

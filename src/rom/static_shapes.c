@@ -38,7 +38,7 @@ static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBas
 static PetscReal BoltConeFraction(const BoltContactSet *c, PetscInt gp, const PetscReal t[3], PetscReal tangent[3])
 {
   const PetscReal *n  = &c->gpNormal[3 * gp];
-  const PetscReal  tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], bound = c->friction[c->elem[gp / 4].pair] * PetscMax(-tn, 0.0);
+  const PetscReal  tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], bound = c->friction[BoltContactSetElementPair(c, gp / 4)] * PetscMax(-tn, 0.0);
   PetscReal        tt = 0;
 
   for (PetscInt k = 0; k < 3; k++) tt += PetscSqr(t[k] - tn * n[k]);

@@ -101,7 +101,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   PetscCall(BoltCheckpointVectorsFree(BOLT_CKPT_STATE + nm->nsnap, &names, &fields));
   if (op->ops.stateSave) PetscCall((*op->ops.stateSave)(op, v));
   PetscCall(PetscMalloc1(BOLT_CKPT_CONTACT * ne + nhist + 1, &buf));
-  for (PetscInt e = 0; e < ne; e++) buf[e] = c->elem[e].key;
+  for (PetscInt e = 0; e < ne; e++) buf[e] = BoltContactSetElementKey(c, e);
   PetscCall(BoltHDF5WriteValues(v, comm, "contact_keys", ne, 1, buf, PETSC_FALSE));
   for (PetscInt e = 0; e < ne; e++) {
     BoltContactStatePack(op->state, e, &buf[k]);
@@ -216,7 +216,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
     for (PetscInt e = 0; e < c->nelem; e++) {
       PetscInt         row;
       const PetscReal *s;
-      PetscCall(BoltKeyIndexFind(ix, c->elem[e].key, &row));
+      PetscCall(BoltKeyIndexFind(ix, BoltContactSetElementKey(c, e), &row));
       if (row < 0) {
         missing++;
         continue;
@@ -233,7 +233,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
       PetscCheck(n == 4 * nsnap * BoltKeyIndexSize(ix), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (snapshot contact states of %" PetscInt_FMT " values for %" PetscInt_FMT " elements)", file, n, BoltKeyIndexSize(ix));
       for (PetscInt e = 0; e < c->nelem; e++) {
         PetscInt row;
-        PetscCall(BoltKeyIndexFind(ix, c->elem[e].key, &row));
+        PetscCall(BoltKeyIndexFind(ix, BoltContactSetElementKey(c, e), &row));
         if (row < 0) continue; /* counted as missing above */
         for (PetscInt i = 0; i < nsnap; i++)
           for (PetscInt q = 0; q < 4; q++) nm->snapCodes[4 * c->nelem * i + 4 * e + q] = (unsigned char)x[(row * nsnap + i) * 4 + q];

@@ -24,14 +24,14 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *d, PetscInt outer, PetscInt inn
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt q = 0; q < 4; q++)
       for (PetscInt a = 0; a < 4; a++)
-        for (PetscInt d = 0; d < 3; d++) ctr[3 * c->elem[e].pair + d] += c->gpW[4 * e + q] * c->gpN[16 * e + 4 * q + a] * c->elem[e].Xa[3 * a + d] / c->areaPerPair[c->elem[e].pair];
+        for (PetscInt d = 0; d < 3; d++) ctr[3 * BoltContactSetElementPair(c, e) + d] += c->gpW[4 * e + q] * c->gpN[16 * e + 4 * q + a] * BoltContactSetElementCoordinates(c, e)[3 * a + d] / c->areaPerPair[BoltContactSetElementPair(c, e)];
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ctr, 3 * P, MPIU_REAL, MPI_SUM, d->op->comm));
   for (PetscInt e = 0; e < c->nelem; e++)
     for (PetscInt q = 0; q < 4; q++) {
-      PetscInt  gp = 4 * e + q, p = c->elem[e].pair;
+      PetscInt  gp = 4 * e + q, p = BoltContactSetElementPair(c, e);
       PetscReal x[3] = {0, 0, 0}, r;
       for (PetscInt a = 0; a < 4; a++)
-        for (PetscInt d = 0; d < 3; d++) x[d] += c->gpN[16 * e + 4 * q + a] * c->elem[e].Xa[3 * a + d];
+        for (PetscInt d = 0; d < 3; d++) x[d] += c->gpN[16 * e + 4 * q + a] * BoltContactSetElementCoordinates(c, e)[3 * a + d];
       r = PetscSqrtReal(PetscSqr(x[0] - ctr[3 * p]) + PetscSqr(x[1] - ctr[3 * p + 1]));
       if (s->active[gp]) rmax[P + p] = PetscMax(rmax[P + p], r);
       if (s->active[gp] == s->activeOld[gp]) continue;
@@ -66,7 +66,7 @@ PetscErrorCode BoltContactMonitorTension(BoltDual *d)
   PetscCall(PetscMalloc1(4 * c->nelem + 1, &ts));
   PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, s->lambda, ts));
   for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscReal band = s->bandTraction[c->elem[e].pair];
+    const PetscReal band = s->bandTraction[BoltContactSetElementPair(c, e)];
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt         gp = 4 * e + q;
       const PetscReal *n = &c->gpNormal[3 * gp], *l = &s->lambda[3 * gp];
