@@ -1,4 +1,4 @@
-/* Files under src/sys: folders made before the files written into them, and the HDF5 datasets
+/* Files and folders: folders made before the files written into them, and the HDF5 datasets
    (PetscViewerHDF5) that the models, checkpoints and ROM files write and read back, with a
    sorted index to find a row by its key, and attributes of a file's root group. */
 #include "private/sys.h"
