@@ -128,6 +128,8 @@ struct _n_BoltROM {
   PetscInt       *gpRows;            /* 4 per local point: the row of each node it interpolates (-1: none) */
   PetscScalar    *gnRow;             /* nGapRows: scratch */
   PetscReal      *tnC, *tnK;         /* per local point: the opening test's traction is tnC + tnK g.n */
+  PetscReal      *tnTau;             /* 3 per local point: scratch of tnC and tnK's tractions (grow-only) */
+  PetscInt        tnTauAlloc;
   /* the whole gap of an open point is needed only where it closes (it sticks there): it is taken
      from the point's rows of D_e when its normal gap is within wholeGapBound x |q|_max of closing,
      a bound on the rounding between the normal row and the whole gap's normal part */

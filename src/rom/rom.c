@@ -127,8 +127,11 @@ PetscErrorCode ROMOnlineDestroy(BoltROM *rom)
   PetscCall(PetscFree(rom->kcrSend));
   PetscCall(PetscFree(rom->kcrRecv));
   PetscCall(PetscFree(rom->kcrDT));
+  rom->kcrSendAlloc = rom->kcrRecvAlloc = rom->kcrDTAlloc = 0; /* a later operator grows them afresh */
   PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
+  PetscCall(PetscFree(rom->tnTau)); /* grown one by one, freed alone */
+  rom->tnTauAlloc = 0;
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(BoltROMUpdateDestroy(&rom->update));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));

@@ -98,7 +98,8 @@ PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
   }
   if (!rom->tnValid || rom->tnVersion != s->version) {
     PetscReal *tau; /* 3 per point: the tractions whose normal part is wanted */
-    PetscCall(PetscMalloc1(3 * ngp + 1, &tau));
+    PetscCall(BoltGrowReal(&rom->tnTau, &rom->tnTauAlloc, 3 * ngp + 1));
+    tau = rom->tnTau;
     for (PetscInt pass = 0; pass < 2; pass++) {
       PetscReal *out = pass ? rom->tnK : rom->tnC;
       for (PetscInt gp = 0; gp < ngp; gp++) {
@@ -115,7 +116,6 @@ PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
           out[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
         }
     }
-    PetscCall(PetscFree(tau));
     rom->tnVersion = s->version;
     rom->tnValid   = PETSC_TRUE;
   }
