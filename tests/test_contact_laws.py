@@ -24,7 +24,7 @@ static PetscErrorCode Scene(BoltMesh *m, const char law[], BoltContactSet **cp, 
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactSetCreate(m, &c));
-  PetscCall(BoltContactLawCreate(m->comm, law, &c->law));
+  PetscCall(BoltContactLawCreate(BoltMeshComm(m), law, &c->law));
   c->npairs = 1;
   c->nelem  = 1;
   c->ngpGlobal = 4;
@@ -210,7 +210,7 @@ static PetscErrorCode TestRegistered(BoltMesh *m)
   PetscCall(BoltContactSetDestroy(&c));
   /* an unknown name is refused */
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ierr = BoltContactLawCreate(m->comm, "nope", &law);
+  ierr = BoltContactLawCreate(BoltMeshComm(m), "nope", &law);
   PetscCall(PetscPopErrorHandler());
   EXPECT(ierr == PETSC_ERR_USER_INPUT && !law, "registered: an unknown law is refused (%d)", (int)ierr);
   PetscFunctionReturn(0);

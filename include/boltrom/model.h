@@ -13,36 +13,29 @@ PetscErrorCode BoltMaterialTableDestroy(BoltMaterialTable **);
 
 /* ------------------------------------------------------------------ mesh.c */
 /* The distributed mesh, its parts and groups, and the DOF layout (3 per vertex, clamp removed). */
-typedef struct {
-  MPI_Comm          comm;
-  char              filename[PETSC_MAX_PATH_LEN];
-  char              clampGroup[BOLTROM_NAME_LEN];
-  PetscBool         clamp;          /* remove the clamp group's DOFs from the global system */
-  char              supportGroup[BOLTROM_NAME_LEN]; /* -support_group: nodes held in some components only ("": none) */
-  PetscInt          supportComponents[3], nsupportComponents; /* the components held there, ascending */
-  char              partitioner[64]; /* metis (ours, through a shell partitioner) or a PETSc type */
-  DM                dm;
-  PetscInt          nparts;
-  char              partName[BOLTROM_MAX_PARTS][BOLTROM_NAME_LEN];
-  PetscInt          partMaterial[BOLTROM_MAX_PARTS]; /* index in the material table */
-  char              partMaterialMap[PETSC_MAX_PATH_LEN]; /* part:material,... */
-  PetscInt          cStart, cEnd, vStart, vEnd;
-  PetscInt         *cellPart;        /* part index of each local cell */
-  PetscInt          pStart, pEnd;
-  PetscBT           pointGhost;      /* point owned by another rank (pStart-based) */
-  PetscInt         *pointOriginal;   /* number of each local point in the mesh as read (pStart-based) */
-  PetscInt          partTag[BOLTROM_MAX_PARTS]; /* gmsh physical tag = label value */
-  PetscInt          nverticesGlobal, ncellsGlobal, ndofsFree;
-  PetscInt          edgeCut;         /* faces between cells of different ranks, after distribution */
-  BoltMaterialTable *materials;  /* owned */
-  Hex8Formulation   formulation;
-} BoltMesh;
+typedef struct _n_BoltMesh BoltMesh;
 
 PetscErrorCode BoltMeshCreate(MPI_Comm, BoltMesh **);
 PetscErrorCode BoltMeshSetFromOptions(BoltMesh *);
 PetscErrorCode BoltMeshSetUp(BoltMesh *);
 PetscErrorCode BoltMeshView(BoltMesh *, PetscViewer);
 PetscErrorCode BoltMeshDestroy(BoltMesh **);
+/* mesh_info.c: what the mesh tells other modules (cells and vertices are DMPlex points: take
+   their ranges from BoltMeshDM's strata) */
+MPI_Comm        BoltMeshComm(const BoltMesh *);
+DM              BoltMeshDM(const BoltMesh *);
+const char     *BoltMeshFileName(const BoltMesh *);
+Hex8Formulation BoltMeshFormulation(const BoltMesh *);
+PetscInt        BoltMeshVertexCountGlobal(const BoltMesh *);
+PetscInt        BoltMeshCellCountGlobal(const BoltMesh *);
+PetscInt        BoltMeshPartCount(const BoltMesh *);
+const char     *BoltMeshPartName(const BoltMesh *, PetscInt);
+PetscInt        BoltMeshCellPart(const BoltMesh *, PetscInt);
+PetscInt        BoltMeshPointOriginal(const BoltMesh *, PetscInt);
+const char     *BoltMeshClampGroup(const BoltMesh *);
+const char     *BoltMeshSupportGroup(const BoltMesh *);
+PetscErrorCode  BoltMeshPartValuesWrite(const BoltMesh *, BoltJSON *, const char[], const PetscInt[], const PetscReal[]);
+PetscErrorCode  BoltMeshSummaryWrite(const BoltMesh *, BoltJSON *);
 /* Part p's material: its name, Young's modulus [Pa], Poisson's ratio and density [kg/m^3] */
 PetscErrorCode BoltMeshPartMaterial(BoltMesh *, PetscInt, const char **, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode BoltMeshHasGroup(BoltMesh *, const char[], PetscBool *);

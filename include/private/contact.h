@@ -5,6 +5,94 @@
    (BoltContactLawRegister) fills the same table. */
 #include "boltrom.h"
 
+struct _n_BoltContactSet {
+  BoltMesh           *mesh;
+  PetscInt            npairs;
+  char                pairName[BOLTROM_MAX_PAIRS][BOLTROM_NAME_LEN];
+  PetscInt            pairPart[BOLTROM_MAX_PAIRS][2];
+  PetscReal           penaltyFactor;              /* x E of the softer part, per metre */
+  PetscReal           epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS]; /* default penalties */
+  PetscReal           bandTraction[BOLTROM_MAX_PAIRS]; /* default tension [Pa] beyond which a closed point opens */
+  PetscReal           friction[BOLTROM_MAX_PAIRS]; /* Coulomb coefficient per pair (frictional law) */
+  PetscReal           frictionDefault;             /* -contact_friction */
+  PetscReal           slipAngleTolerance;          /* -contact_slip_angle_tolerance [rad] */
+  PetscReal           slipStiffnessRatio;          /* -contact_slip_stiffness_ratio */
+  PetscReal           stickFactor;                 /* -contact_stick_stiffness_factor: x E of the softer part, per metre */
+  PetscReal           stickStiffness[BOLTROM_MAX_PAIRS]; /* frictional law: tangential stiffness of a sticking pair [Pa/m] */
+  PetscBool           frictionSet;
+  PetscInt            contactDofsPerPair[BOLTROM_MAX_PAIRS], contactDofs;
+  PetscInt            elementsPerPair[BOLTROM_MAX_PAIRS];
+  PetscReal           areaPerPair[BOLTROM_MAX_PAIRS];
+  PetscReal           matchTolerance;              /* relative to the mesh size */
+  PetscInt            nelem;
+  BoltContactElement *elem;
+  /* defaults of the law (-contact_*), copied into each new state */
+  char                lawType[64];    /* -contact_law: a BoltContactLawList entry */
+  BoltContactLaw     *law;            /* its operations and properties (owned) */
+  PetscBool           augment;        /* -contact_augment: augmented Lagrangian (false: pure penalty) */
+  PetscReal           activationGap;  /* penetration [m] beyond which an open point closes */
+  PetscInt            openTest;       /* BOLT_OPEN_NODAL: a closed point opens on its traction smoothed
+                                         through the nodes; BOLT_OPEN_GAUSS: on its own multiplier */
+  PetscBool           reanchor;       /* -contact_reclose stick: a strict-law pair that closes again sticks where it closes */
+  PetscInt            quadrature;     /* BOLT_QUADRATURE_GAUSS (2x2) or _NODAL (points at the nodes) */
+  PetscReal           hMin;           /* shortest edge of a contact face (global) */
+  PetscReal           gapTolerance;   /* default gap tolerance of the strict law [m]: 1e-9 hMin */
+  PetscReal          *gpN, *gpW, *gpNormal; /* shape values (16), area weights (4), normals (12) per element */
+  PetscInt           *elemLocal;      /* 24 per element: index in the local contact vector, -1 if clamped */
+  PetscInt            nlocal;         /* length of the local contact vector */
+  PetscInt           *localGlobal;    /* its global DOFs */
+  PetscInt            ngpGlobal;
+  VecScatter          scatter;        /* global displacement -> uc */
+  PetscReal          *nodalArea;      /* nlocal: sum w N n over all Gauss points (vector area of the node) */
+  /* scratch */
+  Vec                 layout;         /* a vector of the global layout (never written: a template) */
+};
+
+struct _n_BoltContactState {
+  BoltContactSet *set;
+  struct _n_BoltContactWork *work; /* this state's work space (displacements, forces, sums) */
+  char            lawType[64];
+  BoltContactLaw *law;            /* the set's */
+  PetscBool       augment;        /* augmented Lagrangian (false: penalty, lambda fixed) */
+  PetscReal       activationGap;
+  PetscInt        openTest;
+  PetscReal       epsN[BOLTROM_MAX_PAIRS], epsT[BOLTROM_MAX_PAIRS], bandTraction[BOLTROM_MAX_PAIRS];
+  PetscReal       stickStiffness[BOLTROM_MAX_PAIRS]; /* frictional law: elastic stick [Pa/m], not scaled with the penalties (it is physics) */
+  PetscReal      *lambda, *gap;   /* 3 per Gauss point: multiplier (traction) and gap u_b - u_a */
+  PetscBool      *active, *activeOld, *activeOlder;
+  PetscBool      *released;       /* strict law, -contact_reclose slide: the point has opened, and slides (normal contact only) when closed */
+  PetscBool       reanchor;       /* strict law, -contact_reclose stick: a pair that closes again sticks where it closes */
+  PetscReal      *anchor;         /* 3 per point: tangential position where a re-closed pair sticks (0: since the start);
+                                     frictional law: the tangential raw gap from which its elastic stick is measured */
+  PetscReal      *lambdaForce;    /* 3 per point: lambda - epsT anchor, the multipliers that the solve's forces take */
+  PetscReal      *lambdaPrev;     /* 3 per point: the multipliers of the converged step before the last (BoltContactStateExtrapolate) */
+  PetscInt       *closedSteps;    /* per point: converged steps in a row it ended closed, at most 2 */
+  PetscReal      *slipStart;      /* strict laws, 3 per point: its raw gap (u_b - u_a) at the start of the step */
+  PetscReal      *tractionStart;  /* strict laws, 3 per point: its traction at the start of the step */
+  PetscReal       contactWork;    /* strict laws: work of the contact tractions over the converged steps [J] (local) */
+  PetscReal       dissipated;     /* frictional law: energy dissipated by slip over the converged steps [J] (local) */
+  PetscReal      *slipDir;        /* frictional law, 4 per point: the direction a slipping pair slides along in K_c,
+                                     and K_c's stiffness across it (the return map's derivative, k_t mu |t_N| / |trial|) */
+  PetscBool       stickOnly;      /* frictional law: closed pairs never slip (the basis's static shapes) */
+  PetscReal       frictionChange; /* frictional law: the last update's largest slip-traction change [Pa] over the largest pressure (global) */
+  PetscReal       slipStiffnessRatio; /* frictional law: K_c takes a slipping pair's new stiffness when off by more than this factor */
+  PetscReal       slipAngleTolerance; /* frictional law: a slipping pair's direction turns when its traction is off it by more [rad] */
+  PetscBool       anchored;       /* some local point has a non-zero anchor */
+  const PetscBool *mayChange;     /* per point, or NULL (all): the points whose state may change (a ROM's: those of its opening shapes) */
+  PetscBool       closeOnly;      /* anti-cycling (the dual loop): points may close but not open */
+  PetscBool       holdContact;    /* the closed and open points stay so (a kept active set), but under friction still stick or slip */
+  PetscBool      *dirty;          /* element whose activity or penalty changed since its Ke was built */
+  PetscReal      *Ke;             /* 576 per element: stiffness of its active Gauss points (made when first needed) */
+  Mat             Kc;             /* contact stiffness in the global layout (COO; made when first needed) */
+  PetscBool       KcAssembled;    /* Kc holds the current element matrices */
+  PetscInt        nactive;
+  /* raised on every rank together whenever the multipliers, the active or sliding flags or the
+     penalties may have changed (BoltContactStateChanged): a model that caches what it derives
+     from the state compares it, and every rank takes the same decision without a reduction */
+  PetscObjectState version;
+  PetscBool        lambdaZero; /* the multipliers are +0 on every rank (penalty law, after an augmentation) */
+};
+
 /* A law's operations at point gp of state s (pair: the point's pair). NULL where the law has
    none; the comment of each says what the state does then. */
 typedef struct {

@@ -35,4 +35,29 @@ struct _n_BoltMaterialTable {
   BoltMaterial mat[BOLTROM_MAX_PARTS];
 };
 
+struct _n_BoltMesh {
+  MPI_Comm          comm;
+  char              filename[PETSC_MAX_PATH_LEN];
+  char              clampGroup[BOLTROM_NAME_LEN];
+  PetscBool         clamp;          /* remove the clamp group's DOFs from the global system */
+  char              supportGroup[BOLTROM_NAME_LEN]; /* -support_group: nodes held in some components only ("": none) */
+  PetscInt          supportComponents[3], nsupportComponents; /* the components held there, ascending */
+  char              partitioner[64]; /* metis (ours, through a shell partitioner) or a PETSc type */
+  DM                dm;
+  PetscInt          nparts;
+  char              partName[BOLTROM_MAX_PARTS][BOLTROM_NAME_LEN];
+  PetscInt          partMaterial[BOLTROM_MAX_PARTS]; /* index in the material table */
+  char              partMaterialMap[PETSC_MAX_PATH_LEN]; /* part:material,... */
+  PetscInt          cStart, cEnd, vStart, vEnd;
+  PetscInt         *cellPart;        /* part index of each local cell */
+  PetscInt          pStart, pEnd;
+  PetscBT           pointGhost;      /* point owned by another rank (pStart-based) */
+  PetscInt         *pointOriginal;   /* number of each local point in the mesh as read (pStart-based) */
+  PetscInt          partTag[BOLTROM_MAX_PARTS]; /* gmsh physical tag = label value */
+  PetscInt          nverticesGlobal, ncellsGlobal, ndofsFree;
+  PetscInt          edgeCut;         /* faces between cells of different ranks, after distribution */
+  BoltMaterialTable *materials;  /* owned */
+  Hex8Formulation   formulation;
+};
+
 #endif

@@ -6,12 +6,12 @@
 /* A model's contact state at the end of its run, at the nodes (BoltOutputContactState). */
 static PetscErrorCode FieldsFinalContactState(BoltOutput *h5, BoltMesh *mesh, BoltContactState *state, const char name[])
 {
-  BoltContactSet *c = state->set;
+  BoltContactSet *c = BoltContactStateSet(state);
   unsigned char  *codes;
 
   PetscFunctionBeginUser;
-  if (!c->ngpGlobal) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc1(4 * c->nelem + 1, &codes));
+  if (!BoltContactSetPointCountGlobal(c)) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(4 * BoltContactSetElementCount(c) + 1, &codes));
   BoltContactStatePointCodes(state, codes);
   PetscCall(BoltOutputContactState(h5, mesh, c, codes, name));
   PetscCall(PetscFree(codes));
@@ -72,8 +72,8 @@ static PetscErrorCode FieldsSnapshots(BoltOutput *h5, BoltMesh *mesh, const char
     if (rom) PetscCall(BoltROMExpand(rom, snap[i], u));
     PetscCall(BoltOutputSnapshot(h5, mesh, prefix, i, rom ? u : snap[i]));
   }
-  if (c->ngpGlobal) PetscCall(BoltOutputSnapshotStates(h5, mesh, prefix, c, nsnap, codes));
-  PetscCall(BoltOutputSnapshotSeries(h5, prefix, nsnap, time, c->ngpGlobal ? PETSC_TRUE : PETSC_FALSE));
+  if (BoltContactSetPointCountGlobal(c)) PetscCall(BoltOutputSnapshotStates(h5, mesh, prefix, c, nsnap, codes));
+  PetscCall(BoltOutputSnapshotSeries(h5, prefix, nsnap, time, BoltContactSetPointCountGlobal(c) ? PETSC_TRUE : PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -133,6 +133,6 @@ PetscErrorCode BoltSummaryWriteFields(const BoltSummary *s, const char dir[], co
     PetscCall(BoltOutputVertexField(&h5, mesh, s->Mx, "Mx"));
   }
   PetscCall(BoltOutputClose(&h5, mesh));
-  PetscCall(PetscPrintf(mesh->comm, "Wrote %s/%s.h5 and %s/%s.xmf (open the .xmf in ParaView)\n", dir, name, dir, name));
+  PetscCall(PetscPrintf(BoltMeshComm(mesh), "Wrote %s/%s.h5 and %s/%s.xmf (open the .xmf in ParaView)\n", dir, name, dir, name));
   PetscFunctionReturn(0);
 }

@@ -11,7 +11,7 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscFunctionBeginUser;
   PetscCall(BoltMeshCreate(r->comm, &r->mesh));
   PetscCall(BoltMeshSetFromOptions(r->mesh));
-  PetscCheck(!r->opt.checkRigid || !r->mesh->clamp, r->comm, PETSC_ERR_USER_INPUT, "-check_rigid needs the free-free model: add -clamp false");
+  PetscCheck(!r->opt.checkRigid || !BoltMeshClampGroup(r->mesh), r->comm, PETSC_ERR_USER_INPUT, "-check_rigid needs the free-free model: add -clamp false");
   PetscCall(BoltAssemblerCreate(r->mesh, &r->asmb));
   PetscCall(BoltAssemblerSetFromOptions(r->asmb));
   PetscCall(BoltContactSetCreate(r->mesh, &r->contact));
@@ -95,7 +95,7 @@ static PetscErrorCode BoltRunMain(void)
   PetscCall(PetscLogStagePush(BOLT_STAGE_SET_UP));
   PetscCall(BoltRunConfigure(&r, checkpointBase));
   PetscCall(PetscOptionsHasHelp(NULL, &help));
-  if (help && !r.mesh->filename[0]) { /* -help alone: the options are listed (above); stop */
+  if (help && !BoltMeshFileName(r.mesh)[0]) { /* -help alone: the options are listed (above); stop */
     PetscCall(PetscLogStagePop());
     PetscCall(BoltRunDestroy(&r));
     PetscFunctionReturn(0);

@@ -37,7 +37,7 @@ static PetscErrorCode BoltRunLoadHistory(const BoltSummary *s, const char **name
 /* The Coulomb coefficient of each pair, 0 for a frictionless law. */
 static void BoltRunFriction(const BoltContactSet *c, PetscReal mu[])
 {
-  for (PetscInt p = 0; p < c->npairs; p++) mu[p] = BoltContactSetHasFriction(c) ? c->friction[p] : 0;
+  for (PetscInt p = 0; p < BoltContactSetPairCount(c); p++) mu[p] = BoltContactSetHasFriction(c) ? BoltContactSetFriction(c, p) : 0;
 }
 
 /* The root attributes above, on the file that v has open (every rank, same values). */
@@ -52,7 +52,7 @@ PetscErrorCode BoltSummaryWriteAttributes(const BoltSummary *s, PetscViewer v)
   PetscFunctionBeginUser;
   PetscCall(BoltRunLoadHistory(s, &history, &frequency));
   BoltRunFriction(c, mu);
-  for (PetscInt p = 0; p < c->npairs; p++) names[p] = c->pairName[p];
+  for (PetscInt p = 0; p < BoltContactSetPairCount(c); p++) names[p] = BoltContactSetPairName(c, p);
   PetscCall(PetscOptionsGetAll(NULL, &options));
   PetscCall(BoltHDF5AttributeString(v, "units", "SI: m, kg, s, N, Pa"));
   PetscCall(BoltHDF5AttributeString(v, "probe_group", BoltLoadSetProbeGroup(l)));
@@ -64,9 +64,9 @@ PetscErrorCode BoltSummaryWriteAttributes(const BoltSummary *s, PetscViewer v)
   PetscCall(BoltHDF5AttributeReals(v, "load_direction", 3, BoltLoadSetLoadDirection(l)));
   PetscCall(BoltHDF5AttributeString(v, "load_history", history));
   PetscCall(BoltHDF5AttributeReals(v, "load_frequency", -1, &frequency));
-  PetscCall(BoltHDF5AttributeString(v, "contact_law", c->lawType));
-  PetscCall(BoltHDF5AttributeStrings(v, "pair_names", c->npairs, names));
-  PetscCall(BoltHDF5AttributeReals(v, "friction", c->npairs, mu));
+  PetscCall(BoltHDF5AttributeString(v, "contact_law", BoltContactSetLawType(c)));
+  PetscCall(BoltHDF5AttributeStrings(v, "pair_names", BoltContactSetPairCount(c), names));
+  PetscCall(BoltHDF5AttributeReals(v, "friction", BoltContactSetPairCount(c), mu));
   PetscCall(BoltHDF5AttributeString(v, "options", options));
   PetscCall(PetscFree(options));
   PetscFunctionReturn(0);
@@ -90,7 +90,7 @@ PetscErrorCode BoltSummaryWriteLoad(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONString(j, "load_history", history));
   PetscCall(BoltJSONReal(j, "load_frequency", frequency));
   PetscCall(BoltJSONBeginObject(j, "friction_per_pair"));
-  for (PetscInt p = 0; p < c->npairs; p++) PetscCall(BoltJSONReal(j, c->pairName[p], mu[p]));
+  for (PetscInt p = 0; p < BoltContactSetPairCount(c); p++) PetscCall(BoltJSONReal(j, BoltContactSetPairName(c, p), mu[p]));
   PetscCall(BoltJSONEndObject(j));
   PetscFunctionReturn(0);
 }

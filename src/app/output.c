@@ -12,42 +12,46 @@ static inline PetscInt BoltGlobalNumber(const PetscInt *num, PetscInt i)
 
 PetscErrorCode BoltOutputOpen(BoltMesh *m, const char dir[], const char name[], BoltOutput *out)
 {
+  const PetscInt nvg = BoltMeshVertexCountGlobal(m), ncg = BoltMeshCellCountGlobal(m);
   IS              vnumIS, cnumIS, topo;
   const PetscInt *vnum, *cnum;
-  PetscInt        nown = 0, ncell = m->cEnd - m->cStart, *cells;
+  PetscInt        nown = 0, ncell, *cells, vStart, vEnd, cStart, cEnd;
   Vec             geom, part, vpart;
   Vec             coords;
   PetscSection    cs;
   const PetscScalar *x;
 
   PetscFunctionBeginUser;
+  PetscCall(DMPlexGetHeightStratum(BoltMeshDM(m), 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(BoltMeshDM(m), 0, &vStart, &vEnd));
+  ncell = cEnd - cStart;
   PetscCall(PetscLogEventBegin(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
   PetscCall(PetscMemzero(out, sizeof(*out)));
-  out->comm = m->comm;
+  out->comm = BoltMeshComm(m);
   PetscCall(PetscStrncpy(out->dir, dir, sizeof(out->dir)));
   PetscCall(PetscStrncpy(out->name, name, sizeof(out->name)));
-  PetscCall(BoltMakeDir(m->comm, dir));
+  PetscCall(BoltMakeDir(BoltMeshComm(m), dir));
   PetscCall(PetscSNPrintf(out->h5final, sizeof(out->h5final), "%s/%s.h5", dir, name));
   PetscCall(PetscSNPrintf(out->h5tmp, sizeof(out->h5tmp), "%s/.%s.h5.tmp", dir, name));
-  PetscCall(PetscViewerHDF5Open(m->comm, out->h5tmp, FILE_MODE_WRITE, &out->viewer));
+  PetscCall(PetscViewerHDF5Open(BoltMeshComm(m), out->h5tmp, FILE_MODE_WRITE, &out->viewer));
 
-  PetscCall(DMPlexGetVertexNumbering(m->dm, &vnumIS));
-  PetscCall(DMPlexGetCellNumbering(m->dm, &cnumIS));
+  PetscCall(DMPlexGetVertexNumbering(BoltMeshDM(m), &vnumIS));
+  PetscCall(DMPlexGetCellNumbering(BoltMeshDM(m), &cnumIS));
   PetscCall(ISGetIndices(vnumIS, &vnum));
   PetscCall(ISGetIndices(cnumIS, &cnum));
-  for (PetscInt v = m->vStart; v < m->vEnd; v++)
-    if (vnum[v - m->vStart] >= 0) nown++;
+  for (PetscInt v = vStart; v < vEnd; v++)
+    if (vnum[v - vStart] >= 0) nown++;
   /* geometry: (N, 3) */
-  PetscCall(VecCreateMPI(m->comm, 3 * nown, 3 * m->nverticesGlobal, &geom));
+  PetscCall(VecCreateMPI(BoltMeshComm(m), 3 * nown, 3 * nvg, &geom));
   PetscCall(VecSetBlockSize(geom, 3));
-  PetscCall(VecCreateMPI(m->comm, nown, m->nverticesGlobal, &vpart));
+  PetscCall(VecCreateMPI(BoltMeshComm(m), nown, nvg, &vpart));
   PetscCall(PetscObjectSetName((PetscObject)geom, "vertices"));
   PetscCall(PetscObjectSetName((PetscObject)vpart, "part"));
-  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
-  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(BoltMeshDM(m), &coords));
+  PetscCall(DMGetCoordinateSection(BoltMeshDM(m), &cs));
   PetscCall(VecGetArrayRead(coords, &x));
-  for (PetscInt v = m->vStart; v < m->vEnd; v++) {
-    PetscInt off, g = vnum[v - m->vStart], rows[3];
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off, g = vnum[v - vStart], rows[3];
     if (g < 0) continue;
     PetscCall(PetscSectionGetOffset(cs, v, &off));
     for (PetscInt d = 0; d < 3; d++) rows[d] = 3 * g + d;
@@ -56,31 +60,31 @@ PetscErrorCode BoltOutputOpen(BoltMesh *m, const char dir[], const char name[], 
   PetscCall(VecRestoreArrayRead(coords, &x));
   /* topology (NC, 8) in VTK order, part of each cell, and the lowest part at each vertex
      (a key, with the coordinates, to compare runs on different rank counts) */
-  PetscCall(VecCreateMPI(m->comm, ncell, m->ncellsGlobal, &part));
+  PetscCall(VecCreateMPI(BoltMeshComm(m), ncell, ncg, &part));
   PetscCall(PetscObjectSetName((PetscObject)part, "part"));
   PetscCall(PetscMalloc1(8 * ncell + 1, &cells));
   {
     PetscInt *vp;
-    PetscCall(PetscMalloc1(m->vEnd - m->vStart + 1, &vp));
-    for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) vp[v] = PETSC_MAX_INT;
-    for (PetscInt c = m->cStart; c < m->cEnd; c++) {
+    PetscCall(PetscMalloc1(vEnd - vStart + 1, &vp));
+    for (PetscInt v = 0; v < vEnd - vStart; v++) vp[v] = PETSC_MAX_INT;
+    for (PetscInt c = cStart; c < cEnd; c++) {
       PetscInt verts[8];
       PetscCall(BoltMeshCellVertices(m, c, verts));
-      for (PetscInt a = 0; a < 8; a++) vp[verts[a] - m->vStart] = PetscMin(vp[verts[a] - m->vStart], m->cellPart[c - m->cStart]);
+      for (PetscInt a = 0; a < 8; a++) vp[verts[a] - vStart] = PetscMin(vp[verts[a] - vStart], BoltMeshCellPart(m, c));
     }
-    for (PetscInt v = m->vStart; v < m->vEnd; v++)
-      if (vnum[v - m->vStart] >= 0) PetscCall(VecSetValue(vpart, vnum[v - m->vStart], (PetscScalar)vp[v - m->vStart], INSERT_VALUES));
+    for (PetscInt v = vStart; v < vEnd; v++)
+      if (vnum[v - vStart] >= 0) PetscCall(VecSetValue(vpart, vnum[v - vStart], (PetscScalar)vp[v - vStart], INSERT_VALUES));
     PetscCall(PetscFree(vp));
   }
-  for (PetscInt c = m->cStart; c < m->cEnd; c++) {
-    PetscInt verts[8], g = cnum[c - m->cStart];
+  for (PetscInt c = cStart; c < cEnd; c++) {
+    PetscInt verts[8], g = cnum[c - cStart];
     PetscCheck(g >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Unexpected ghost cell");
     PetscCall(BoltMeshCellVertices(m, c, verts));
     for (PetscInt a = 0; a < 8; a++) {
-      PetscInt gv = BoltGlobalNumber(vnum, verts[a] - m->vStart);
-      cells[8 * (c - m->cStart) + a] = gv;
+      PetscInt gv = BoltGlobalNumber(vnum, verts[a] - vStart);
+      cells[8 * (c - cStart) + a] = gv;
     }
-    PetscCall(VecSetValue(part, g, (PetscScalar)m->cellPart[c - m->cStart], INSERT_VALUES));
+    PetscCall(VecSetValue(part, g, (PetscScalar)BoltMeshCellPart(m, c), INSERT_VALUES));
   }
   PetscCall(ISRestoreIndices(vnumIS, &vnum));
   PetscCall(ISRestoreIndices(cnumIS, &cnum));
@@ -90,7 +94,7 @@ PetscErrorCode BoltOutputOpen(BoltMesh *m, const char dir[], const char name[], 
   PetscCall(VecAssemblyEnd(part));
   PetscCall(VecAssemblyBegin(vpart));
   PetscCall(VecAssemblyEnd(vpart));
-  PetscCall(ISCreateGeneral(m->comm, 8 * ncell, cells, PETSC_OWN_POINTER, &topo));
+  PetscCall(ISCreateGeneral(BoltMeshComm(m), 8 * ncell, cells, PETSC_OWN_POINTER, &topo));
   PetscCall(ISSetBlockSize(topo, 8));
   PetscCall(PetscObjectSetName((PetscObject)topo, "cells"));
   PetscCall(PetscViewerHDF5PushGroup(out->viewer, "/geometry"));
@@ -139,7 +143,9 @@ static PetscScalar BoltNodeContactState(const PetscReal wk[3])
    weights of BoltContactSetNodalStates. */
 static PetscErrorCode BoltOutputVertexValues(BoltOutput *out, BoltMesh *m, Vec u, const char name[], PetscBool state)
 {
+  const PetscInt     nvg = BoltMeshVertexCountGlobal(m);
   const PetscInt     bs = state ? 1 : 3;
+  PetscInt           vStart, vEnd;
   IS                 vnumIS;
   const PetscInt    *vnum;
   PetscInt           nown = 0, rstart;
@@ -147,19 +153,20 @@ static PetscErrorCode BoltOutputVertexValues(BoltOutput *out, BoltMesh *m, Vec u
   const PetscScalar *a;
 
   PetscFunctionBeginUser;
-  PetscCheck(out->nfields < 16, m->comm, PETSC_ERR_SUP, "Too many output fields");
+  PetscCall(DMPlexGetDepthStratum(BoltMeshDM(m), 0, &vStart, &vEnd));
+  PetscCheck(out->nfields < 16, BoltMeshComm(m), PETSC_ERR_SUP, "Too many output fields");
   PetscCall(PetscLogEventBegin(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
-  PetscCall(DMPlexGetVertexNumbering(m->dm, &vnumIS));
+  PetscCall(DMPlexGetVertexNumbering(BoltMeshDM(m), &vnumIS));
   PetscCall(ISGetIndices(vnumIS, &vnum));
-  for (PetscInt v = m->vStart; v < m->vEnd; v++)
-    if (vnum[v - m->vStart] >= 0) nown++;
-  PetscCall(VecCreateMPI(m->comm, bs * nown, bs * m->nverticesGlobal, &w));
+  for (PetscInt v = vStart; v < vEnd; v++)
+    if (vnum[v - vStart] >= 0) nown++;
+  PetscCall(VecCreateMPI(BoltMeshComm(m), bs * nown, bs * nvg, &w));
   PetscCall(VecSetBlockSize(w, bs));
   PetscCall(PetscObjectSetName((PetscObject)w, name));
   PetscCall(VecGetOwnershipRange(u, &rstart, NULL));
   PetscCall(VecGetArrayRead(u, &a));
-  for (PetscInt v = m->vStart; v < m->vEnd; v++) {
-    PetscInt    g = vnum[v - m->vStart], idx[3], rows[3];
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt    g = vnum[v - vStart], idx[3], rows[3];
     PetscScalar val[3];
     if (g < 0) continue;
     PetscCall(BoltMeshVertexDofs(m, v, idx));
@@ -204,7 +211,7 @@ PetscErrorCode BoltOutputContactState(BoltOutput *out, BoltMesh *m, BoltContactS
   BoltContactWork *w;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(c->layout, &W));
+  PetscCall(VecDuplicate(BoltContactSetLayout(c), &W));
   PetscCall(BoltContactWorkCreate(c, &w));
   PetscCall(BoltContactSetNodalStates(c, w, codes, W));
   PetscCall(BoltContactWorkDestroy(&w));
@@ -257,7 +264,7 @@ PetscErrorCode BoltOutputPairForces(BoltOutput *out, const char group[], BoltCon
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(sub, sizeof(sub), "%s/pair_force", group));
-  for (PetscInt p = 0; p < c->npairs; p++) PetscCall(BoltOutputTable(out, sub, c->pairName[p], n, BOLT_PAIR_FORCE, BOLT_PAIR_FORCE * c->npairs, &values[BOLT_PAIR_FORCE * p]));
+  for (PetscInt p = 0; p < BoltContactSetPairCount(c); p++) PetscCall(BoltOutputTable(out, sub, BoltContactSetPairName(c, p), n, BOLT_PAIR_FORCE, BOLT_PAIR_FORCE * BoltContactSetPairCount(c), &values[BOLT_PAIR_FORCE * p]));
   PetscFunctionReturn(0);
 }
 
@@ -271,7 +278,7 @@ PetscErrorCode BoltOutputSnapshotStates(BoltOutput *out, BoltMesh *m, const char
   for (PetscInt i = 0; i < n; i++) {
     char name[BOLTROM_NAME_LEN];
     PetscCall(PetscSNPrintf(name, sizeof(name), "%scontact_state_%06" PetscInt_FMT, prefix, i));
-    PetscCall(BoltOutputContactState(out, m, c, &codes[4 * c->nelem * i], name));
+    PetscCall(BoltOutputContactState(out, m, c, &codes[4 * BoltContactSetElementCount(c) * i], name));
     out->nfields = nf;
   }
   PetscFunctionReturn(0);
@@ -310,10 +317,11 @@ PetscErrorCode BoltOutputSnapshotSeries(BoltOutput *out, const char prefix[], Pe
 
 static void BoltWriteXdmfMesh(FILE *fp, BoltOutput *out, BoltMesh *m)
 {
-  fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n", m->ncellsGlobal);
-  fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s.h5:/topology/cells</DataItem>\n   </Topology>\n", m->ncellsGlobal, (int)sizeof(PetscInt), out->name);
-  fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/geometry/vertices</DataItem>\n   </Geometry>\n", m->nverticesGlobal, out->name);
-  fprintf(fp, "   <Attribute Name=\"part\" AttributeType=\"Scalar\" Center=\"Cell\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/cell_fields/part</DataItem>\n   </Attribute>\n", m->ncellsGlobal, out->name);
+  const PetscInt nvg = BoltMeshVertexCountGlobal(m), ncg = BoltMeshCellCountGlobal(m);
+  fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n", ncg);
+  fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s.h5:/topology/cells</DataItem>\n   </Topology>\n", ncg, (int)sizeof(PetscInt), out->name);
+  fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/geometry/vertices</DataItem>\n   </Geometry>\n", nvg, out->name);
+  fprintf(fp, "   <Attribute Name=\"part\" AttributeType=\"Scalar\" Center=\"Cell\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/cell_fields/part</DataItem>\n   </Attribute>\n", ncg, out->name);
 }
 
 static const char boltXdmfHead[] = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n";
@@ -321,13 +329,14 @@ static const char boltXdmfHead[] = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYS
 /* The main grid: the mesh and the fields written on it. */
 static void BoltWriteXdmfGrid(FILE *fp, BoltOutput *out, BoltMesh *m)
 {
+  const PetscInt nvg = BoltMeshVertexCountGlobal(m), ncg = BoltMeshCellCountGlobal(m);
   fprintf(fp, "%s", boltXdmfHead);
   fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Uniform\">\n", out->name);
-  fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n", m->ncellsGlobal);
-  fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s.h5:/topology/cells</DataItem>\n   </Topology>\n", m->ncellsGlobal, (int)sizeof(PetscInt), out->name);
-  fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/geometry/vertices</DataItem>\n   </Geometry>\n", m->nverticesGlobal, out->name);
+  fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n", ncg);
+  fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Precision=\"%d\" Format=\"HDF\">%s.h5:/topology/cells</DataItem>\n   </Topology>\n", ncg, (int)sizeof(PetscInt), out->name);
+  fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/geometry/vertices</DataItem>\n   </Geometry>\n", nvg, out->name);
   for (PetscInt f = 0; f < out->nfields; f++) {
-    PetscInt n = out->fieldOnCells[f] ? m->ncellsGlobal : m->nverticesGlobal;
+    PetscInt n = out->fieldOnCells[f] ? ncg : nvg;
     fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", out->field[f], out->fieldComponents[f] == 3 ? "Vector" : "Scalar", out->fieldOnCells[f] ? "Cell" : "Node");
     if (out->fieldComponents[f] == 3) fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/%s/%s</DataItem>\n", n, out->name, "vertex_fields", out->field[f]);
     else fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/%s/%s</DataItem>\n", n, out->name, out->fieldOnCells[f] ? "cell_fields" : "vertex_fields", out->field[f]);
@@ -339,6 +348,7 @@ static void BoltWriteXdmfGrid(FILE *fp, BoltOutput *out, BoltMesh *m)
 /* Series k: a grid per snapshot with its displacement (and contact state). */
 static void BoltWriteXdmfSeries(FILE *fp, BoltOutput *out, BoltMesh *m, PetscInt k)
 {
+  const PetscInt nvg = BoltMeshVertexCountGlobal(m);
   const char *pre = out->series[k].prefix;
 
   fprintf(fp, "%s", boltXdmfHead);
@@ -346,8 +356,8 @@ static void BoltWriteXdmfSeries(FILE *fp, BoltOutput *out, BoltMesh *m, PetscInt
   for (PetscInt i = 0; i < out->series[k].n; i++) {
     fprintf(fp, "  <Grid Name=\"step\" GridType=\"Uniform\">\n   <Time Value=\"%.10g\"/>\n", (double)out->series[k].time[i]);
     BoltWriteXdmfMesh(fp, out, m);
-    fprintf(fp, "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/%ssnapshot_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", m->nverticesGlobal, out->name, pre, i);
-    if (out->series[k].states) fprintf(fp, "   <Attribute Name=\"contact_state\" AttributeType=\"Scalar\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/%scontact_state_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", m->nverticesGlobal, out->name, pre, i);
+    fprintf(fp, "   <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/%ssnapshot_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", nvg, out->name, pre, i);
+    if (out->series[k].states) fprintf(fp, "   <Attribute Name=\"contact_state\" AttributeType=\"Scalar\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s.h5:/vertex_fields/%scontact_state_%06" PetscInt_FMT "</DataItem>\n   </Attribute>\n", nvg, out->name, pre, i);
     fprintf(fp, "  </Grid>\n");
   }
   fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
@@ -379,7 +389,7 @@ PetscErrorCode BoltOutputClose(BoltOutput *out, BoltMesh *m)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(BOLT_EVENT_OUTPUT, 0, 0, 0, 0));
   PetscCall(PetscViewerDestroy(&out->viewer));
-  PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+  PetscCallMPI(MPI_Comm_rank(BoltMeshComm(m), &rank));
   if (rank == 0) {
     PetscCheck(rename(out->h5tmp, out->h5final) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", out->h5tmp, out->h5final);
     PetscCall(BoltWriteXdmf(out, m, "", -1));

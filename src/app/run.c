@@ -66,7 +66,7 @@ PetscErrorCode BoltRunTied(BoltRun *r)
 
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, &M));
-  if (r->contact->npairs) PetscCall(BoltContactSetAssembleTied(r->contact, K, &r->Ktied));
+  if (BoltContactSetPairCount(r->contact)) PetscCall(BoltContactSetAssembleTied(r->contact, K, &r->Ktied));
   else {
     PetscCall(PetscObjectReference((PetscObject)K));
     r->Ktied = K;
@@ -116,21 +116,21 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
     PetscCall(BoltNewmarkGetStaticSolve(r->fomNm, &outer, &inner));
     PetscCall(PetscPrintf(r->comm, "Preload %g N: static contact solve in %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations\n", (double)BoltLoadSetPreloadForce(r->loads), (PetscInt)outer, (PetscInt)inner));
   }
-  if (contact->npairs <= 6) { /* a line each would be long for many pairs: then their range (the summary has each) */
+  if (BoltContactSetPairCount(contact) <= 6) { /* a line each would be long for many pairs: then their range (the summary has each) */
     PetscCall(PetscPrintf(r->comm, "  normal force per pair [N]:"));
-    for (PetscInt p = 0; p < contact->npairs; p++) PetscCall(PetscPrintf(r->comm, " %s %.1f", contact->pairName[p], (double)s->preloadForce[p]));
+    for (PetscInt p = 0; p < BoltContactSetPairCount(contact); p++) PetscCall(PetscPrintf(r->comm, " %s %.1f", BoltContactSetPairName(contact, p), (double)s->preloadForce[p]));
     PetscCall(PetscPrintf(r->comm, "\n"));
   } else {
     PetscReal lo = PETSC_MAX_REAL, hi = PETSC_MIN_REAL;
-    for (PetscInt p = 0; p < contact->npairs; p++) {
+    for (PetscInt p = 0; p < BoltContactSetPairCount(contact); p++) {
       lo = PetscMin(lo, s->preloadForce[p]);
       hi = PetscMax(hi, s->preloadForce[p]);
     }
-    PetscCall(PetscPrintf(r->comm, "  normal force of the %" PetscInt_FMT " pairs from %.1f to %.1f N (each in the summary)\n", contact->npairs, (double)lo, (double)hi));
+    PetscCall(PetscPrintf(r->comm, "  normal force of the %" PetscInt_FMT " pairs from %.1f to %.1f N (each in the summary)\n", BoltContactSetPairCount(contact), (double)lo, (double)hi));
   }
   PetscCall(BoltMemoryPrint(r->comm, "the FOM's preload"));
   PetscCall(BoltContactStateTractionStats(BoltOperatorState(r->fomOp), &s->tractionStats[0], &s->tractionStats[1], &s->tractionStats[2]));
-  s->preloadActive      = BoltOperatorState(r->fomOp)->nactive;
+  s->preloadActive      = BoltContactStateActiveCount(BoltOperatorState(r->fomOp));
   PetscCall(BoltContactStateCountReclosed(BoltOperatorState(r->fomOp), &s->preloadSliding, NULL));
   {
     BoltDual *dual;

@@ -3,19 +3,6 @@
    file of its fields and histories is fields.c's. */
 #include "private/app.h"
 
-/* An object of one value per named pair or part: the integers vi, or else the reals vr. */
-static PetscErrorCode SummaryNamed(BoltJSON *j, const char key[], PetscInt n, const char names[][BOLTROM_NAME_LEN], const PetscInt vi[], const PetscReal vr[])
-{
-  PetscFunctionBeginUser;
-  PetscCall(BoltJSONBeginObject(j, key));
-  for (PetscInt p = 0; p < n; p++) {
-    if (vi) PetscCall(BoltJSONInt(j, names[p], vi[p]));
-    else PetscCall(BoltJSONReal(j, names[p], vr[p]));
-  }
-  PetscCall(BoltJSONEndObject(j));
-  PetscFunctionReturn(0);
-}
-
 /* The model: sizes, partition, and per pair and per part figures. */
 static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIInt size)
 {
@@ -24,35 +11,22 @@ static PetscErrorCode SummaryModel(BoltJSON *j, const BoltSummary *s, PetscMPIIn
   BoltContactSet *contact = s->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltJSONString(j, "mesh", mesh->filename));
+  PetscCall(BoltMeshSummaryWrite(mesh, j));
   PetscCall(BoltJSONInt(j, "ranks", size));
-  PetscCall(BoltJSONString(j, "element", mesh->formulation == HEX8_FULL ? "full" : "incompatible"));
-  PetscCall(BoltJSONString(j, "partitioner", mesh->partitioner));
-  PetscCall(BoltJSONInt(j, "edge_cut", mesh->edgeCut));
-  PetscCall(BoltJSONInt(j, "nodes", mesh->nverticesGlobal));
-  PetscCall(BoltJSONInt(j, "elements", mesh->ncellsGlobal));
-  PetscCall(BoltJSONInt(j, "dofs", 3 * mesh->nverticesGlobal));
-  PetscCall(BoltJSONInt(j, "free_dofs", mesh->ndofsFree));
-  PetscCall(BoltJSONInt(j, "contact_dofs", contact->contactDofs));
-  PetscCall(BoltJSONString(j, "contact_law", contact->lawType));
-  if (BoltContactSetIsComplementarity(contact)) PetscCall(BoltJSONString(j, "contact_reclose", contact->reanchor ? "stick" : "slide"));
-  PetscCall(BoltJSONReal(j, "contact_gap_tolerance", contact->gapTolerance));
-  PetscCall(SummaryNamed(j, "contact_dofs_per_pair", contact->npairs, contact->pairName, contact->contactDofsPerPair, NULL));
-  PetscCall(SummaryNamed(j, "contact_elements_per_pair", contact->npairs, contact->pairName, contact->elementsPerPair, NULL));
-  PetscCall(SummaryNamed(j, "contact_area_per_pair", contact->npairs, contact->pairName, NULL, contact->areaPerPair));
+  PetscCall(BoltContactSetSummaryWrite(contact, j));
   {
     PetscInt  elements[BOLTROM_MAX_PARTS];
     PetscReal mass[BOLTROM_MAX_PARTS], volume[BOLTROM_MAX_PARTS];
-    for (PetscInt p = 0; p < mesh->nparts; p++) PetscCall(BoltAssemblerGetPart(asmb, p, &mass[p], &volume[p], &elements[p]));
-    PetscCall(SummaryNamed(j, "elements_per_part", mesh->nparts, mesh->partName, elements, NULL));
-    PetscCall(SummaryNamed(j, "mass_per_part", mesh->nparts, mesh->partName, NULL, mass));
-    PetscCall(SummaryNamed(j, "volume_per_part", mesh->nparts, mesh->partName, NULL, volume));
+    for (PetscInt p = 0; p < BoltMeshPartCount(mesh); p++) PetscCall(BoltAssemblerGetPart(asmb, p, &mass[p], &volume[p], &elements[p]));
+    PetscCall(BoltMeshPartValuesWrite(mesh, j, "elements_per_part", elements, NULL));
+    PetscCall(BoltMeshPartValuesWrite(mesh, j, "mass_per_part", NULL, mass));
+    PetscCall(BoltMeshPartValuesWrite(mesh, j, "volume_per_part", NULL, volume));
   }
   PetscCall(BoltJSONBeginObject(j, "material_per_part"));
-  for (PetscInt p = 0; p < mesh->nparts; p++) {
+  for (PetscInt p = 0; p < BoltMeshPartCount(mesh); p++) {
     const char *name;
     PetscCall(BoltMeshPartMaterial(mesh, p, &name, NULL, NULL, NULL));
-    PetscCall(BoltJSONString(j, mesh->partName[p], name));
+    PetscCall(BoltJSONString(j, BoltMeshPartName(mesh, p), name));
   }
   PetscCall(BoltJSONEndObject(j));
   PetscFunctionReturn(0);
@@ -80,7 +54,7 @@ static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
     PetscCall(BoltJSONReal(j, "seconds", s->tModal));
     PetscCall(BoltJSONEndObject(j));
   }
-  if (s->checkRigid) PetscCall(SummaryNamed(j, "rigid_residual_per_part", s->mesh->nparts, s->mesh->partName, NULL, s->rigid));
+  if (s->checkRigid) PetscCall(BoltMeshPartValuesWrite(s->mesh, j, "rigid_residual_per_part", NULL, s->rigid));
   PetscFunctionReturn(0);
 }
 
@@ -100,7 +74,7 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONReal(j, "traction_tangential_max", s->tractionStats[2]));
   PetscCall(BoltJSONInt(j, "active_points", s->preloadActive));
   PetscCall(BoltJSONInt(j, "sliding_points", s->preloadSliding));
-  PetscCall(SummaryNamed(j, "normal_force_per_pair", contact->npairs, contact->pairName, NULL, s->preloadForce));
+  PetscCall(BoltContactSetPairValuesWrite(contact, j, "normal_force_per_pair", NULL, s->preloadForce));
   PetscCall(BoltJSONEndObject(j));
   PetscCall(BoltJSONBeginObject(j, "fom"));
   PetscCall(BoltNewmarkSummaryWrite(s->fomRun, j, PETSC_TRUE));
@@ -117,7 +91,7 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   {
     BoltOperator *op;
     PetscCall(BoltNewmarkGetModel(s->romRun, &op, NULL, NULL));
-    PetscCall(BoltJSONInt(j, "held_points", BoltOperatorState(op)->mayChange != NULL));
+    PetscCall(BoltJSONInt(j, "held_points", BoltContactStateMayChange(BoltOperatorState(op)) != NULL));
   }
   PetscCall(BoltNewmarkSummaryWrite(s->romRun, j, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));

@@ -128,7 +128,7 @@ PetscErrorCode BoltCheckRigid(BoltAssembler *asmb, Vec layout, PetscReal rigid[]
   PetscCall(BoltAssemblerGetMesh(asmb, &mesh));
   PetscCall(VecDuplicate(layout, &x));
   PetscCall(VecDuplicate(layout, &Kx));
-  for (PetscInt p = 0; p < mesh->nparts; p++) {
+  for (PetscInt p = 0; p < BoltMeshPartCount(mesh); p++) {
     Mat       Kp;
     PetscReal knorm;
     rigid[p] = 0;
@@ -145,7 +145,7 @@ PetscErrorCode BoltCheckRigid(BoltAssembler *asmb, Vec layout, PetscReal rigid[]
       rigid[p] = PetscMax(rigid[p], yn / (knorm * rn));
     }
     PetscCall(MatDestroy(&Kp));
-    PetscCall(PetscPrintf(mesh->comm, "Rigid motions of part %s: max |K r| / (|K| |r|) = %.3e\n", mesh->partName[p], (double)rigid[p]));
+    PetscCall(PetscPrintf(BoltMeshComm(mesh), "Rigid motions of part %s: max |K r| / (|K| |r|) = %.3e\n", BoltMeshPartName(mesh, p), (double)rigid[p]));
   }
   PetscCall(VecDestroy(&x));
   PetscCall(VecDestroy(&Kx));

@@ -104,7 +104,7 @@ PetscErrorCode BoltContactSetSetUpQuadrature(BoltContactSet *c, Vec layout)
   }
   {
     PetscInt ngp = 4 * ne;
-    PetscCall(MPIU_Allreduce(&ngp, &c->ngpGlobal, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+    PetscCall(MPIU_Allreduce(&ngp, &c->ngpGlobal, 1, MPIU_INT, MPI_SUM, BoltMeshComm(c->mesh)));
   }
   PetscFunctionReturn(0);
 }
@@ -118,7 +118,7 @@ PetscErrorCode BoltContactSetStiffnessMatrix(BoltContactSet *c, Mat *Kc)
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(c->layout, &m));
   PetscCall(VecGetSize(c->layout, &M));
-  PetscCall(MatCreate(c->mesh->comm, Kc));
+  PetscCall(MatCreate(BoltMeshComm(c->mesh), Kc));
   PetscCall(MatSetSizes(*Kc, m, m, M, M));
   PetscCall(MatSetType(*Kc, MATAIJ));
   PetscCall(PetscObjectSetName((PetscObject)*Kc, "Kc"));
@@ -262,18 +262,23 @@ static PetscErrorCode BoltContactForcesInto(BoltContactSet *c, const PetscReal l
 PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *c)
 {
   BoltMesh    *m  = c->mesh;
-  PetscInt     np = m->nparts, nv, *verts, held[BOLTROM_MAX_PARTS], adj[BOLTROM_MAX_PARTS][BOLTROM_MAX_PARTS];
+  PetscInt     np = BoltMeshPartCount(m), nv, *verts, held[BOLTROM_MAX_PARTS], adj[BOLTROM_MAX_PARTS][BOLTROM_MAX_PARTS];
   DM           dmv;
   PetscSection s;
   Vec          loc, ind[BOLTROM_MAX_PARTS + 1];
+  PetscInt     pStart, pEnd, vStart, vEnd, cStart, cEnd;
+  const char  *clampGroup = BoltMeshClampGroup(m);
 
   PetscFunctionBeginUser;
-  if (!m->clamp) PetscFunctionReturn(0);
+  if (!clampGroup) PetscFunctionReturn(0);
+  PetscCall(DMPlexGetChart(BoltMeshDM(m), &pStart, &pEnd));
+  PetscCall(DMPlexGetDepthStratum(BoltMeshDM(m), 0, &vStart, &vEnd));
+  PetscCall(DMPlexGetHeightStratum(BoltMeshDM(m), 0, &cStart, &cEnd));
   /* one indicator per part (and one for the clamp) on the vertices, summed over the ranks */
-  PetscCall(DMClone(m->dm, &dmv));
-  PetscCall(PetscSectionCreate(m->comm, &s));
-  PetscCall(PetscSectionSetChart(s, m->pStart, m->pEnd));
-  for (PetscInt v = m->vStart; v < m->vEnd; v++) PetscCall(PetscSectionSetDof(s, v, 1));
+  PetscCall(DMClone(BoltMeshDM(m), &dmv));
+  PetscCall(PetscSectionCreate(BoltMeshComm(m), &s));
+  PetscCall(PetscSectionSetChart(s, pStart, pEnd));
+  for (PetscInt v = vStart; v < vEnd; v++) PetscCall(PetscSectionSetDof(s, v, 1));
   PetscCall(PetscSectionSetUp(s));
   PetscCall(DMSetLocalSection(dmv, s));
   PetscCall(DMCreateLocalVector(dmv, &loc));
@@ -282,9 +287,9 @@ PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *c)
     PetscCall(VecZeroEntries(loc));
     PetscCall(VecGetArray(loc, &a));
     if (p < np) {
-      for (PetscInt cell = m->cStart; cell < m->cEnd; cell++) {
+      for (PetscInt cell = cStart; cell < cEnd; cell++) {
         PetscInt cv[8], off;
-        if (m->cellPart[cell - m->cStart] != p) continue;
+        if (BoltMeshCellPart(m, cell) != p) continue;
         PetscCall(BoltMeshCellVertices(m, cell, cv));
         for (PetscInt k = 0; k < 8; k++) {
           PetscCall(PetscSectionGetOffset(s, cv[k], &off));
@@ -292,7 +297,7 @@ PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *c)
         }
       }
     } else {
-      PetscCall(BoltMeshGroupVertices(m, m->clampGroup, PETSC_FALSE, &nv, &verts));
+      PetscCall(BoltMeshGroupVertices(m, clampGroup, PETSC_FALSE, &nv, &verts));
       for (PetscInt k = 0; k < nv; k++) {
         PetscInt off;
         PetscCall(PetscSectionGetOffset(s, verts[k], &off));
@@ -326,7 +331,7 @@ PetscErrorCode BoltContactSetCheckSupport(BoltContactSet *c)
   PetscCall(PetscSectionDestroy(&s));
   PetscCall(DMDestroy(&dmv));
   for (PetscInt p = 0; p < np; p++)
-    PetscCheck(held[p], m->comm, PETSC_ERR_USER_INPUT, "Part %s is held by neither the clamp group '%s' nor, through shared nodes or contact pairs (contact_<pair>_a/_b), by a part that is: it would float free; extend the clamp group, add a contact pair, or run free-free with -clamp false", m->partName[p], m->clampGroup);
+    PetscCheck(held[p], BoltMeshComm(m), PETSC_ERR_USER_INPUT, "Part %s is held by neither the clamp group '%s' nor, through shared nodes or contact pairs (contact_<pair>_a/_b), by a part that is: it would float free; extend the clamp group, add a contact pair, or run free-free with -clamp false", BoltMeshPartName(m, p), clampGroup);
   PetscFunctionReturn(0);
 }
 

@@ -31,9 +31,9 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactLawRegisterAll());
-  PetscOptionsBegin(c->mesh->comm, NULL, "Contact", "boltrom");
+  PetscOptionsBegin(BoltMeshComm(c->mesh), NULL, "Contact", "boltrom");
   PetscCall(PetscOptionsFList("-contact_law", "Contact law: strict (one-sided at every node pair, closed pairs stick), coulomb (strict with Coulomb friction) or stick (the paper's)", "BoltContactLaw", BoltContactLawList, c->lawType, c->lawType, sizeof(c->lawType), NULL));
-  PetscCall(BoltContactLawCreate(c->mesh->comm, c->lawType, &c->law)); /* an unknown law fails here, before any solve */
+  PetscCall(BoltContactLawCreate(BoltMeshComm(c->mesh), c->lawType, &c->law)); /* an unknown law fails here, before any solve */
   c->penaltyFactor = c->law->penaltyFactor;
   c->quadrature    = BoltContactSetIsComplementarity(c) ? BOLT_QUADRATURE_NODAL : BOLT_QUADRATURE_GAUSS;
   PetscCall(PetscOptionsReal("-contact_penalty_factor", "Normal and tangential penalty as a multiple of the softer part's E, per metre [1/m] (default: the law's, strict 3e7, coulomb 1e6, stick 200)", NULL, c->penaltyFactor, &c->penaltyFactor, NULL));
@@ -57,15 +57,15 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscCall(PetscOptionsReal("-contact_slip_stiffness_ratio", "Coulomb friction: K_c takes a slipping pair's new stiffness across its slip (mu |t_N| / |slip|) once the one it has is off by more than this factor", NULL, c->slipStiffnessRatio, &c->slipStiffnessRatio, NULL));
   PetscCall(PetscOptionsReal("-contact_stick_stiffness_factor", "Coulomb: tangential stiffness of a sticking pair (elastic stick), x E of the softer part, per metre [1/m]", NULL, c->stickFactor, &c->stickFactor, NULL));
   PetscOptionsEnd();
-  PetscCheck(c->stickFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_stick_stiffness_factor must be > 0 (got %g)", (double)c->stickFactor);
-  PetscCheck(c->slipStiffnessRatio > 1, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_stiffness_ratio must be > 1 (got %g)", (double)c->slipStiffnessRatio);
-  PetscCheck(c->slipAngleTolerance > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_slip_angle_tolerance must be > 0 (got %g)", (double)c->slipAngleTolerance);
-  PetscCheck(!c->frictionSet || BoltContactSetHasFriction(c), c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_friction needs a frictional law: add -contact_law coulomb (the %s law has no Coulomb limit)", c->lawType);
-  PetscCheck(!BoltContactSetHasFriction(c) || c->reanchor, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_reclose slide is frictionless sliding: drop it with -contact_law coulomb (a pair that closes again sticks, then slips by friction)");
-  PetscCheck(c->frictionDefault >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_friction must be >= 0 (got %g)", (double)c->frictionDefault);
-  PetscCheck(c->penaltyFactor > 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
-  PetscCheck(!set || c->activationGap >= 0, c->mesh->comm, PETSC_ERR_USER_INPUT, "-contact_activation_gap must be >= 0 (got %g)", (double)c->activationGap);
-  PetscCheck(!BoltContactSetIsComplementarity(c) || c->augment, c->mesh->comm, PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
+  PetscCheck(c->stickFactor > 0, BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "-contact_stick_stiffness_factor must be > 0 (got %g)", (double)c->stickFactor);
+  PetscCheck(c->slipStiffnessRatio > 1, BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "-contact_slip_stiffness_ratio must be > 1 (got %g)", (double)c->slipStiffnessRatio);
+  PetscCheck(c->slipAngleTolerance > 0, BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "-contact_slip_angle_tolerance must be > 0 (got %g)", (double)c->slipAngleTolerance);
+  PetscCheck(!c->frictionSet || BoltContactSetHasFriction(c), BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "-contact_friction needs a frictional law: add -contact_law coulomb (the %s law has no Coulomb limit)", c->lawType);
+  PetscCheck(!BoltContactSetHasFriction(c) || c->reanchor, BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "-contact_reclose slide is frictionless sliding: drop it with -contact_law coulomb (a pair that closes again sticks, then slips by friction)");
+  PetscCheck(c->frictionDefault >= 0, BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "-contact_friction must be >= 0 (got %g)", (double)c->frictionDefault);
+  PetscCheck(c->penaltyFactor > 0, BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "-contact_penalty_factor must be > 0 (got %g)", (double)c->penaltyFactor);
+  PetscCheck(!set || c->activationGap >= 0, BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "-contact_activation_gap must be >= 0 (got %g)", (double)c->activationGap);
+  PetscCheck(!BoltContactSetIsComplementarity(c) || c->augment, BoltMeshComm(c->mesh), PETSC_ERR_USER_INPUT, "The strict contact law closes gaps by its multipliers: drop -contact_augment false, or use -contact_law stick for the penalty law");
   PetscFunctionReturn(0);
 }
 
@@ -76,17 +76,17 @@ static PetscErrorCode BoltContactFindPairs(BoltContactSet *c)
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+  PetscCallMPI(MPI_Comm_rank(BoltMeshComm(m), &rank));
   c->npairs = 0;
   if (rank == 0) {
     PetscInt nlabels;
-    PetscCall(DMGetNumLabels(m->dm, &nlabels));
+    PetscCall(DMGetNumLabels(BoltMeshDM(m), &nlabels));
     for (PetscInt l = 0; l < nlabels; l++) {
       const char *name;
       size_t      len;
       PetscBool   pre;
 
-      PetscCall(DMGetLabelName(m->dm, l, &name));
+      PetscCall(DMGetLabelName(BoltMeshDM(m), l, &name));
       PetscCall(PetscStrlen(name, &len));
       PetscCall(PetscStrncmp(name, "contact_", 8, &pre));
       if (!pre || len < 11 || name[len - 2] != '_' || name[len - 1] != 'a') continue;
@@ -95,15 +95,15 @@ static PetscErrorCode BoltContactFindPairs(BoltContactSet *c)
       c->npairs++;
     }
   }
-  PetscCallMPI(MPI_Bcast(&c->npairs, 1, MPIU_INT, 0, m->comm));
-  PetscCallMPI(MPI_Bcast(c->pairName, BOLTROM_MAX_PAIRS * BOLTROM_NAME_LEN, MPI_CHAR, 0, m->comm));
+  PetscCallMPI(MPI_Bcast(&c->npairs, 1, MPIU_INT, 0, BoltMeshComm(m)));
+  PetscCallMPI(MPI_Bcast(c->pairName, BOLTROM_MAX_PAIRS * BOLTROM_NAME_LEN, MPI_CHAR, 0, BoltMeshComm(m)));
   for (PetscInt p = 0; p < c->npairs; p++) {
     char      nb[BOLTROM_NAME_LEN + 16];
     PetscBool has;
 
     PetscCall(PetscSNPrintf(nb, sizeof(nb), "contact_%s_b", c->pairName[p]));
     PetscCall(BoltMeshHasGroup(m, nb, &has));
-    PetscCheck(has, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s has side a (contact_%s_a) but no side b: add the physical surface group %s", c->pairName[p], c->pairName[p], nb);
+    PetscCheck(has, BoltMeshComm(m), PETSC_ERR_USER_INPUT, "Contact pair %s has side a (contact_%s_a) but no side b: add the physical surface group %s", c->pairName[p], c->pairName[p], nb);
   }
   PetscFunctionReturn(0);
 }
@@ -132,8 +132,8 @@ static PetscErrorCode BoltContactGatherNodes(BoltContactSet *c, const char group
   PetscFunctionBeginUser;
   PetscCall(BoltMeshGroupVertices(m, group, PETSC_TRUE, &nv, &verts));
   PetscCall(PetscMalloc1(nv + 1, &mine));
-  PetscCall(DMGetCoordinatesLocal(m->dm, &coords));
-  PetscCall(DMGetCoordinateSection(m->dm, &cs));
+  PetscCall(DMGetCoordinatesLocal(BoltMeshDM(m), &coords));
+  PetscCall(DMGetCoordinateSection(BoltMeshDM(m), &cs));
   PetscCall(VecGetArrayRead(coords, &x));
   for (PetscInt i = 0; i < nv; i++) {
     PetscInt off;
@@ -143,7 +143,7 @@ static PetscErrorCode BoltContactGatherNodes(BoltContactSet *c, const char group
   }
   PetscCall(VecRestoreArrayRead(coords, &x));
   PetscCall(PetscFree(verts));
-  PetscCall(BoltGatherAll(m->comm, MPI_BYTE, mine, nv * (PetscInt)sizeof(BoltNode), &all, NULL, &ntot, NULL));
+  PetscCall(BoltGatherAll(BoltMeshComm(m), MPI_BYTE, mine, nv * (PetscInt)sizeof(BoltNode), &all, NULL, &ntot, NULL));
   ntot /= (PetscInt)sizeof(BoltNode);
   qsort(all, (size_t)ntot, sizeof(BoltNode), BoltNodeCompareX);
   PetscCall(PetscFree(mine));
@@ -186,11 +186,11 @@ static PetscErrorCode ContactOrientedFace(BoltMesh *m, const char na[], PetscInt
   PetscCall(BoltMeshFaceVertices(m, face, &nvert, verts, X));
   PetscCheck(nvert == 4, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Contact side %s: face with %" PetscInt_FMT " vertices; contact sides must be quadrilateral faces of hexahedra", na, nvert);
   /* orient the face so its normal points out of part a */
-  PetscCall(DMPlexGetSupportSize(m->dm, face, &nsupp));
-  PetscCall(DMPlexGetSupport(m->dm, face, &supp));
+  PetscCall(DMPlexGetSupportSize(BoltMeshDM(m), face, &nsupp));
+  PetscCall(DMPlexGetSupport(BoltMeshDM(m), face, &supp));
   PetscCheck(nsupp == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Contact side %s contains an interior face: contact surfaces must be on the boundary of their part, with distinct nodes on each side", na);
   cell = supp[0];
-  if (*partA < 0) *partA = m->cellPart[cell - m->cStart];
+  if (*partA < 0) *partA = BoltMeshCellPart(m, cell);
   {
     PetscReal CX[24];
     PetscCall(BoltMeshCellCoordinates(m, cell, CX));
@@ -237,19 +237,19 @@ static PetscErrorCode ContactPairParameters(BoltContactSet *c, PetscInt p, Petsc
   PetscCall(BoltMeshPartMaterial(m, partA, NULL, &Ea, NULL, NULL));
   PetscCall(BoltMeshPartMaterial(m, partB, NULL, &Eb, NULL, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-contact_%s_penalty_factor", c->pairName[p]));
-  PetscOptionsBegin(m->comm, NULL, "Contact pair", "boltrom");
+  PetscOptionsBegin(BoltMeshComm(m), NULL, "Contact pair", "boltrom");
   PetscCall(PetscOptionsReal(opt, "Penalty of this pair, x E of its softer part, per metre", NULL, factor, &factor, NULL));
   PetscOptionsEnd();
-  PetscCheck(factor > 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be > 0 (got %g)", opt, (double)factor);
+  PetscCheck(factor > 0, BoltMeshComm(m), PETSC_ERR_USER_INPUT, "%s must be > 0 (got %g)", opt, (double)factor);
   c->epsN[p] = c->epsT[p] = factor * PetscMin(Ea, Eb);
   c->stickStiffness[p] = c->stickFactor * PetscMin(Ea, Eb);
   c->friction[p] = c->frictionDefault;
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-contact_%s_friction", c->pairName[p]));
-  PetscOptionsBegin(m->comm, NULL, "Contact pair", "boltrom");
+  PetscOptionsBegin(BoltMeshComm(m), NULL, "Contact pair", "boltrom");
   PetscCall(PetscOptionsReal(opt, "Coulomb friction coefficient of this pair (-contact_law coulomb)", NULL, c->friction[p], &c->friction[p], &set));
   PetscOptionsEnd();
-  PetscCheck(!set || BoltContactSetHasFriction(c), m->comm, PETSC_ERR_USER_INPUT, "%s needs a frictional law: add -contact_law coulomb", opt);
-  PetscCheck(c->friction[p] >= 0, m->comm, PETSC_ERR_USER_INPUT, "%s must be >= 0 (got %g)", opt, (double)c->friction[p]);
+  PetscCheck(!set || BoltContactSetHasFriction(c), BoltMeshComm(m), PETSC_ERR_USER_INPUT, "%s needs a frictional law: add -contact_law coulomb", opt);
+  PetscCheck(c->friction[p] >= 0, BoltMeshComm(m), PETSC_ERR_USER_INPUT, "%s must be >= 0 (got %g)", opt, (double)c->friction[p]);
   /* stick law: the opening band in traction is that of the default penalty (200 E/m) at the
      activation gap, whatever the penalty: scaled with eps_N, a stiff penalty kept every point
      closed. The strict law has none. */
@@ -300,7 +300,7 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
         }
         e       = &c->elem[c->nelem];
         e->pair = p;
-        e->key  = m->pointOriginal[face - m->pStart];
+        e->key  = BoltMeshPointOriginal(m, face);
         PetscCall(PetscArraycpy(e->Xa, X, 12));
         for (PetscInt a = 0; a < 4; a++) {
           const BoltNode *bn;
@@ -330,19 +330,19 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
       PetscInt  g;
       PetscReal gbad[3];
       PetscMPIInt rank, worst;
-      PetscCall(MPIU_Allreduce(&nunmatched, &g, 1, MPIU_INT, MPI_SUM, m->comm));
+      PetscCall(MPIU_Allreduce(&nunmatched, &g, 1, MPIU_INT, MPI_SUM, BoltMeshComm(m)));
       if (g) { /* report one unmatched node, from the lowest rank that has one */
-        PetscCallMPI(MPI_Comm_rank(m->comm, &rank));
+        PetscCallMPI(MPI_Comm_rank(BoltMeshComm(m), &rank));
         {
           PetscMPIInt mine = nunmatched ? rank : PETSC_MPI_INT_MAX;
-          PetscCall(MPIU_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MIN, m->comm));
+          PetscCall(MPIU_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MIN, BoltMeshComm(m)));
         }
         PetscCall(PetscArraycpy(gbad, bad, 3));
-        PetscCallMPI(MPI_Bcast(gbad, 3, MPIU_REAL, worst, m->comm));
+        PetscCallMPI(MPI_Bcast(gbad, 3, MPIU_REAL, worst, BoltMeshComm(m)));
       }
-      PetscCheck(!g, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: %" PetscInt_FMT " node(s) of side a have no partner on side b, e.g. (%g, %g, %g): the two surfaces must be meshed node to node", c->pairName[p], g, (double)(g ? gbad[0] : 0), (double)(g ? gbad[1] : 0), (double)(g ? gbad[2] : 0));
-      PetscCall(MPIU_Allreduce(&npartial, &g, 1, MPIU_INT, MPI_SUM, m->comm));
-      PetscCheck(!g, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: the support group '%s' holds %" PetscInt_FMT " of its nodes in some components only, which contact does not take: choose a -support_group off the contact surfaces", c->pairName[p], m->supportGroup, g);
+      PetscCheck(!g, BoltMeshComm(m), PETSC_ERR_USER_INPUT, "Contact pair %s: %" PetscInt_FMT " node(s) of side a have no partner on side b, e.g. (%g, %g, %g): the two surfaces must be meshed node to node", c->pairName[p], g, (double)(g ? gbad[0] : 0), (double)(g ? gbad[1] : 0), (double)(g ? gbad[2] : 0));
+      PetscCall(MPIU_Allreduce(&npartial, &g, 1, MPIU_INT, MPI_SUM, BoltMeshComm(m)));
+      PetscCheck(!g, BoltMeshComm(m), PETSC_ERR_USER_INPUT, "Contact pair %s: the support group '%s' holds %" PetscInt_FMT " of its nodes in some components only, which contact does not take: choose a -support_group off the contact surfaces", c->pairName[p], BoltMeshSupportGroup(m), g);
     }
     PetscCall(BoltMeshGroupVertices(m, na, PETSC_TRUE, &nvA, &vA));
     PetscCall(BoltMeshGroupVertices(m, nb, PETSC_TRUE, &nvB, &vB));
@@ -353,30 +353,30 @@ PetscErrorCode BoltContactSetSetUp(BoltContactSet *c)
       for (PetscInt k = 0; k < nf && partB < 0; k++) {
         PetscInt        nsupp;
         const PetscInt *supp;
-        PetscCall(DMPlexGetSupportSize(m->dm, faces[k], &nsupp));
-        PetscCall(DMPlexGetSupport(m->dm, faces[k], &supp));
-        if (nsupp >= 1 && supp[0] >= m->cStart && supp[0] < m->cEnd) partB = m->cellPart[supp[0] - m->cStart];
+        PetscCall(DMPlexGetSupportSize(BoltMeshDM(m), faces[k], &nsupp));
+        PetscCall(DMPlexGetSupport(BoltMeshDM(m), faces[k], &supp));
+        if (nsupp >= 1) partB = BoltMeshCellPart(m, supp[0]);
       }
       PetscCall(PetscFree(faces));
     }
     counts[0] = nvA;
     counts[1] = nvB;
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, m->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, BoltMeshComm(m)));
     PetscCall(PetscFree(vA));
     PetscCall(PetscFree(vB));
-    PetscCheck(counts[0] == counts[1], m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: side a has %" PetscInt_FMT " nodes but side b has %" PetscInt_FMT ": the two surfaces must cover the same footprint, node to node", c->pairName[p], counts[0], counts[1]);
+    PetscCheck(counts[0] == counts[1], BoltMeshComm(m), PETSC_ERR_USER_INPUT, "Contact pair %s: side a has %" PetscInt_FMT " nodes but side b has %" PetscInt_FMT ": the two surfaces must cover the same footprint, node to node", c->pairName[p], counts[0], counts[1]);
     c->contactDofsPerPair[p] = 3 * (counts[0] + counts[1]);
     c->contactDofs += c->contactDofsPerPair[p];
-    PetscCall(MPIU_Allreduce(&nelemLocal, &c->elementsPerPair[p], 1, MPIU_INT, MPI_SUM, m->comm));
-    PetscCall(MPIU_Allreduce(&area, &c->areaPerPair[p], 1, MPIU_REAL, MPI_SUM, m->comm));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &partA, 1, MPIU_INT, MPI_MAX, m->comm));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &partB, 1, MPIU_INT, MPI_MAX, m->comm));
-    PetscCheck(partA >= 0 && partB >= 0, m->comm, PETSC_ERR_USER_INPUT, "Contact pair %s: a side has no faces on the mesh's hexahedra", c->pairName[p]);
+    PetscCall(MPIU_Allreduce(&nelemLocal, &c->elementsPerPair[p], 1, MPIU_INT, MPI_SUM, BoltMeshComm(m)));
+    PetscCall(MPIU_Allreduce(&area, &c->areaPerPair[p], 1, MPIU_REAL, MPI_SUM, BoltMeshComm(m)));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &partA, 1, MPIU_INT, MPI_MAX, BoltMeshComm(m)));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &partB, 1, MPIU_INT, MPI_MAX, BoltMeshComm(m)));
+    PetscCheck(partA >= 0 && partB >= 0, BoltMeshComm(m), PETSC_ERR_USER_INPUT, "Contact pair %s: a side has no faces on the mesh's hexahedra", c->pairName[p]);
     c->pairPart[p][0] = partA;
     c->pairPart[p][1] = partB;
     PetscCall(ContactPairParameters(c, p, partA, partB));
   }
-  PetscCall(MPIU_Allreduce(&hContact, &c->hMin, 1, MPIU_REAL, MPI_MIN, m->comm));
+  PetscCall(MPIU_Allreduce(&hContact, &c->hMin, 1, MPIU_REAL, MPI_MIN, BoltMeshComm(m)));
   /* the strict law's tolerance on a gap: 1e-9 of the shortest contact-face edge, so of every
      element's size; far above the round-off of the displacements, and its traction error
      (the gap times the structure's stiffness per area) is pascals */
@@ -393,7 +393,7 @@ PetscErrorCode BoltContactSetView(BoltContactSet *c, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "Contact: %" PetscInt_FMT " pairs, %" PetscInt_FMT " contact DOFs, penalty %g x E(softer) per metre\n", c->npairs, c->contactDofs, (double)c->penaltyFactor));
   for (PetscInt p = 0; p < c->npairs; p++)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  pair %-14s %-12s / %-12s %5" PetscInt_FMT " elements, %6" PetscInt_FMT " DOFs, area %.4e m^2, eps %.3e Pa/m\n", c->pairName[p], m->partName[c->pairPart[p][0]], m->partName[c->pairPart[p][1]], c->elementsPerPair[p], c->contactDofsPerPair[p], (double)c->areaPerPair[p], (double)c->epsN[p]));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  pair %-14s %-12s / %-12s %5" PetscInt_FMT " elements, %6" PetscInt_FMT " DOFs, area %.4e m^2, eps %.3e Pa/m\n", c->pairName[p], BoltMeshPartName(m, c->pairPart[p][0]), BoltMeshPartName(m, c->pairPart[p][1]), c->elementsPerPair[p], c->contactDofsPerPair[p], (double)c->areaPerPair[p], (double)c->epsN[p]));
   PetscFunctionReturn(0);
 }
 

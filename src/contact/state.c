@@ -105,7 +105,7 @@ PetscErrorCode BoltContactStateCountReclosed(BoltContactState *s, PetscInt *nsli
     n[0] += (s->active[i] && s->released[i]) ? 1 : 0;
     n[1] += (s->active[i] && (a[0] != 0 || a[1] != 0 || a[2] != 0)) ? 1 : 0;
   }
-  PetscCall(MPIU_Allreduce(n, glob, 2, MPIU_INT, MPI_SUM, s->set->mesh->comm));
+  PetscCall(MPIU_Allreduce(n, glob, 2, MPIU_INT, MPI_SUM, BoltMeshComm(s->set->mesh)));
   *nsliding = glob[0];
   if (nanchored) *nanchored = glob[1];
   PetscFunctionReturn(0);
@@ -118,7 +118,7 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *s)
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < 4 * s->set->nelem; i++) nact += s->active[i] ? 1 : 0;
-  PetscCall(MPIU_Allreduce(&nact, &s->nactive, 1, MPIU_INT, MPI_SUM, s->set->mesh->comm));
+  PetscCall(MPIU_Allreduce(&nact, &s->nactive, 1, MPIU_INT, MPI_SUM, BoltMeshComm(s->set->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -220,7 +220,7 @@ PetscErrorCode BoltContactStateSetActive(BoltContactState *s, const PetscBool ac
   }
   for (PetscInt e = 0; e < c->nelem; e++) s->dirty[e] = PETSC_TRUE;
   BoltContactStateChanged(s);
-  PetscCall(MPIU_Allreduce(&nact, &s->nactive, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&nact, &s->nactive, 1, MPIU_INT, MPI_SUM, BoltMeshComm(c->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -243,7 +243,7 @@ PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
     s->dirty[e] = PETSC_FALSE;
     changed++;
   }
-  PetscCall(MPIU_Allreduce(&changed, &any, 1, MPIU_INT, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&changed, &any, 1, MPIU_INT, MPI_SUM, BoltMeshComm(c->mesh)));
   *Kc = s->Kc;
   if (!any && s->KcAssembled) PetscFunctionReturn(0); /* nothing changed since the last call */
   s->KcAssembled = PETSC_TRUE;
@@ -289,4 +289,11 @@ PetscErrorCode BoltContactStateElementStiffness(BoltContactState *s, PetscInt e,
   PetscFunctionBeginUser;
   PetscCall(s->law->ops.elementStiffness(s, e, Ke));
   PetscFunctionReturn(0);
+}
+
+/* Raises the state's version, so models caching what they derive from it rebuild (see version). */
+void BoltContactStateChanged(BoltContactState *s)
+{
+  s->version++;
+  s->lambdaZero = PETSC_FALSE;
 }

@@ -19,7 +19,7 @@ PetscErrorCode BoltContactStateStickEnergy(BoltContactState *s, PetscReal *energ
       if (!s->active[gp]) continue;
       loc += s->law->ops.stickEnergy(s, gp);
     }
-  PetscCall(MPIU_Allreduce(&loc, energy, 1, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&loc, energy, 1, MPIU_REAL, MPI_SUM, BoltMeshComm(c->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -35,7 +35,7 @@ void BoltContactStateStaticStart(BoltContactState *s)
 PetscErrorCode BoltContactStateContactWork(BoltContactState *s, PetscReal *work)
 {
   PetscFunctionBeginUser;
-  PetscCall(MPIU_Allreduce(&s->contactWork, work, 1, MPIU_REAL, MPI_SUM, s->set->mesh->comm));
+  PetscCall(MPIU_Allreduce(&s->contactWork, work, 1, MPIU_REAL, MPI_SUM, BoltMeshComm(s->set->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -46,7 +46,7 @@ PetscErrorCode BoltContactStateSetTotals(BoltContactState *s, PetscReal contactW
   PetscMPIInt rank;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(s->set->mesh->comm, &rank));
+  PetscCallMPI(MPI_Comm_rank(BoltMeshComm(s->set->mesh), &rank));
   s->contactWork = rank ? 0 : contactWork;
   s->dissipated  = rank ? 0 : dissipated;
   PetscFunctionReturn(0);
@@ -56,7 +56,7 @@ PetscErrorCode BoltContactStateSetTotals(BoltContactState *s, PetscReal contactW
 PetscErrorCode BoltContactStateDissipated(BoltContactState *s, PetscReal *energy)
 {
   PetscFunctionBeginUser;
-  PetscCall(MPIU_Allreduce(&s->dissipated, energy, 1, MPIU_REAL, MPI_SUM, s->set->mesh->comm));
+  PetscCall(MPIU_Allreduce(&s->dissipated, energy, 1, MPIU_REAL, MPI_SUM, BoltMeshComm(s->set->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -110,7 +110,7 @@ PetscErrorCode BoltContactStatePairForces(BoltContactState *s, PetscReal force[]
       for (PetscInt k = 0; k < 3; k++) f[k] -= w * t[k];
       f[3] += w * (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
     }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, force, (PetscMPIInt)(BOLT_PAIR_FORCE * c->npairs), MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, force, (PetscMPIInt)(BOLT_PAIR_FORCE * c->npairs), MPIU_REAL, MPI_SUM, BoltMeshComm(c->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -163,9 +163,9 @@ PetscErrorCode BoltContactStateTractionStats(BoltContactState *s, PetscReal *tnM
     for (PetscInt k = 0; k < 3; k++) t2 += PetscSqr(lam[k] - ln * n[k]);
     tt = PetscMax(tt, PetscSqrtReal(t2));
   }
-  PetscCall(MPIU_Allreduce(&mn, tnMin, 1, MPIU_REAL, MPI_MIN, c->mesh->comm));
-  PetscCall(MPIU_Allreduce(&mx, tnMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
-  PetscCall(MPIU_Allreduce(&tt, ttMax, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&mn, tnMin, 1, MPIU_REAL, MPI_MIN, BoltMeshComm(c->mesh)));
+  PetscCall(MPIU_Allreduce(&mx, tnMax, 1, MPIU_REAL, MPI_MAX, BoltMeshComm(c->mesh)));
+  PetscCall(MPIU_Allreduce(&tt, ttMax, 1, MPIU_REAL, MPI_MAX, BoltMeshComm(c->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -178,7 +178,7 @@ PetscErrorCode BoltContactStateDot(BoltContactState *s, const PetscReal x[], con
   PetscFunctionBeginUser;
   for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
     if (s->active[gp]) loc += c->gpW[gp] * (x[3 * gp] * y[3 * gp] + x[3 * gp + 1] * y[3 * gp + 1] + x[3 * gp + 2] * y[3 * gp + 2]);
-  PetscCall(MPIU_Allreduce(&loc, dot, 1, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&loc, dot, 1, MPIU_REAL, MPI_SUM, BoltMeshComm(c->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -197,7 +197,7 @@ PetscErrorCode BoltContactStatePenetration(BoltContactState *s, PetscReal g[], P
     }
     loc = PetscMax(loc, -(g[3 * gp] * n[0] + g[3 * gp + 1] * n[1] + g[3 * gp + 2] * n[2]));
   }
-  PetscCall(MPIU_Allreduce(&loc, pen, 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(&loc, pen, 1, MPIU_REAL, MPI_MAX, BoltMeshComm(c->mesh)));
   PetscFunctionReturn(0);
 }
 
@@ -223,7 +223,7 @@ PetscErrorCode BoltContactStateComplementarity(BoltContactState *s, PetscReal *p
     loc[3] = PetscMax(loc[3], PetscAbsReal(tn[gp] * gn));
   }
   PetscCall(PetscFree(tn));
-  PetscCall(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(loc, glob, 4, MPIU_REAL, MPI_MAX, BoltMeshComm(c->mesh)));
   *penetration = glob[0];
   *tension     = glob[1];
   *compression = glob[2];

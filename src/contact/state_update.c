@@ -59,9 +59,9 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   sums[2] = nchanged; /* the count goes with the sums */
   /* multipliers known to be +0 everywhere stay so under the penalty law: the sums are zero */
   if (!take && s->lambdaZero) glob[0] = glob[1] = glob[2] = 0;
-  else PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, c->mesh->comm));
+  else PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, BoltMeshComm(c->mesh)));
   /* the penalty law has no violation to measure: zero on every rank, without asking */
-  if (s->augment) PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, c->mesh->comm));
+  if (s->augment) PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, BoltMeshComm(c->mesh)));
   else glob[3] = 0;
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
   *maxPenetration = glob[3];
@@ -234,7 +234,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
       if (now != s->activeOlder[gp]) loc[2]++;
     }
   }
-  PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, BoltMeshComm(c->mesh)));
   if (s->law->ops.returnChange) PetscCall(s->law->ops.returnChange(s, fric, press));
   *nchanged  = glob[0];
   s->nactive = glob[1];
@@ -264,7 +264,7 @@ PetscErrorCode BoltContactStateCloseCycle(BoltContactState *s, PetscInt *nclosed
     }
     if (s->active[gp]) loc[1]++;
   }
-  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, c->mesh->comm));
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, BoltMeshComm(c->mesh)));
   *nclosed   = glob[0];
   s->nactive = glob[1];
   if (glob[0]) BoltContactStateChanged(s);

@@ -71,11 +71,11 @@ PetscErrorCode BoltROMFingerprintScene(BoltAssembler *asmb, BoltContactSet *c, B
   PetscCall(BoltAssemblerGetMesh(asmb, &m));
   PetscCall(BoltAssemblerGetRayleigh(asmb, &alpha, &beta));
   fp->n = 0;
-  PetscCall(FileHash(m->comm, m->filename, &h));
+  PetscCall(FileHash(BoltMeshComm(m), BoltMeshFileName(m), &h));
   PetscCall(PetscSNPrintf(hex, sizeof(hex), "%016llx", h));
   PetscCall(BoltROMFingerprintInt(fp, "format", BOLT_ROM_FORMAT));
   PetscCall(BoltROMFingerprintString(fp, "mesh_hash", hex));
-  PetscCall(BoltROMFingerprintString(fp, "element", m->formulation == HEX8_FULL ? "full" : "incompatible"));
+  PetscCall(BoltROMFingerprintString(fp, "element", BoltMeshFormulation(m) == HEX8_FULL ? "full" : "incompatible"));
   PetscCall(BoltROMFingerprintReal(fp, "rayleigh_alpha", alpha));
   PetscCall(BoltROMFingerprintReal(fp, "rayleigh_beta", beta));
   PetscCall(BoltROMFingerprintInt(fp, "krylov_order", order));
@@ -85,26 +85,26 @@ PetscErrorCode BoltROMFingerprintScene(BoltAssembler *asmb, BoltContactSet *c, B
   PetscCall(BoltROMFingerprintInt(fp, "n_jim", nJIM));
   PetscCall(BoltROMFingerprintString(fp, "preload_group_lower", BoltLoadSetPreloadGroup(loads, 0)));
   PetscCall(BoltROMFingerprintString(fp, "preload_group_upper", BoltLoadSetPreloadGroup(loads, 1)));
-  for (PetscInt p = 0; p < m->nparts; p++) {
+  for (PetscInt p = 0; p < BoltMeshPartCount(m); p++) {
     PetscReal E, nu, rho;
     PetscCall(BoltMeshPartMaterial(m, p, NULL, &E, &nu, &rho));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_E", m->partName[p]));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_E", BoltMeshPartName(m, p)));
     PetscCall(BoltROMFingerprintReal(fp, key, E));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_nu", m->partName[p]));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_nu", BoltMeshPartName(m, p)));
     PetscCall(BoltROMFingerprintReal(fp, key, nu));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_rho", m->partName[p]));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "part_%s_rho", BoltMeshPartName(m, p)));
     PetscCall(BoltROMFingerprintReal(fp, key, rho));
   }
-  PetscCall(BoltROMFingerprintString(fp, "contact_law", c->lawType));
-  PetscCall(BoltROMFingerprintString(fp, "contact_quadrature", c->quadrature == BOLT_QUADRATURE_NODAL ? "nodal" : "gauss"));
-  PetscCall(BoltROMFingerprintInt(fp, "contact_reclose_stick", BoltContactSetIsComplementarity(c) && c->reanchor));
-  for (PetscInt p = 0; p < c->npairs; p++) {
-    PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_penalty", c->pairName[p]));
-    PetscCall(BoltROMFingerprintReal(fp, key, c->epsN[p]));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_friction", c->pairName[p]));
-    PetscCall(BoltROMFingerprintReal(fp, key, BoltContactSetHasFriction(c) ? c->friction[p] : 0));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_stick_stiffness", c->pairName[p]));
-    PetscCall(BoltROMFingerprintReal(fp, key, BoltContactSetHasFriction(c) ? c->stickStiffness[p] : 0));
+  PetscCall(BoltROMFingerprintString(fp, "contact_law", BoltContactSetLawType(c)));
+  PetscCall(BoltROMFingerprintString(fp, "contact_quadrature", BoltContactSetQuadrature(c) == BOLT_QUADRATURE_NODAL ? "nodal" : "gauss"));
+  PetscCall(BoltROMFingerprintInt(fp, "contact_reclose_stick", BoltContactSetIsComplementarity(c) && BoltContactSetReanchor(c)));
+  for (PetscInt p = 0; p < BoltContactSetPairCount(c); p++) {
+    PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_penalty", BoltContactSetPairName(c, p)));
+    PetscCall(BoltROMFingerprintReal(fp, key, BoltContactSetPairPenalty(c, p)));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_friction", BoltContactSetPairName(c, p)));
+    PetscCall(BoltROMFingerprintReal(fp, key, BoltContactSetHasFriction(c) ? BoltContactSetFriction(c, p) : 0));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "pair_%s_stick_stiffness", BoltContactSetPairName(c, p)));
+    PetscCall(BoltROMFingerprintReal(fp, key, BoltContactSetHasFriction(c) ? BoltContactSetPairStickStiffness(c, p) : 0));
   }
   PetscFunctionReturn(0);
 }

@@ -167,7 +167,7 @@ PetscErrorCode BoltInterfaceBuild(BoltContactSet *c, Mat M, Mat C, Mat K, PetscR
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(PetscNew(&ir));
-  ir->comm         = c->mesh->comm;
+  ir->comm         = BoltMeshComm(BoltContactSetMesh(c));
   ir->s0           = s0;
   ir->deflationTol = deflationTol;
   ir->M            = M;
@@ -176,7 +176,7 @@ PetscErrorCode BoltInterfaceBuild(BoltContactSet *c, Mat M, Mat C, Mat K, PetscR
   PetscCall(MatCreateVecs(K, &mark, NULL));
   PetscCall(VecDuplicate(mark, &ir->full));
   PetscCall(VecZeroEntries(mark));
-  for (PetscInt e = 0; e < c->nelem; e++)
+  for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++)
     for (PetscInt k = 0; k < 24; k++)
       if (BoltContactSetElementDofs(c, e)[k] >= 0) PetscCall(VecSetValue(mark, BoltContactSetElementDofs(c, e)[k], k < 12 ? 1.0 : -1.0, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(mark));

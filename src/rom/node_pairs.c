@@ -13,15 +13,15 @@
    pair's points, normalised. */
 PetscErrorCode BoltNodePairsDirected(BoltContactSet *c, const PetscBool mask[], PetscInt nd, const PetscReal pointDir[], PetscInt *npairsOut, PetscInt **pairsOut, PetscReal **dirOut)
 {
-  MPI_Comm    comm = c->mesh->comm;
+  MPI_Comm    comm = BoltMeshComm(BoltContactSetMesh(c));
   const PetscInt m = 3 * nd;
   PetscInt    nloc = 0, npairs, *pairs, *all, ndir;
   PetscReal  *dirs = NULL, *allDir = NULL;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(8 * c->nelem + 2, &pairs));
-  if (pointDir) PetscCall(PetscMalloc1(4 * m * c->nelem + 1, &dirs));
-  for (PetscInt e = 0; e < c->nelem; e++)
+  PetscCall(PetscMalloc1(8 * BoltContactSetElementCount(c) + 2, &pairs));
+  if (pointDir) PetscCall(PetscMalloc1(4 * m * BoltContactSetElementCount(c) + 1, &dirs));
+  for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++)
     for (PetscInt a = 0; a < 4; a++) {
       if (mask && !mask[4 * e + a]) continue;
       pairs[2 * nloc]     = BoltContactSetElementDofs(c, e)[3 * a];

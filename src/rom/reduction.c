@@ -13,7 +13,7 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
   PetscFunctionBeginUser;
   PetscCall(BoltNodePairs(c, NULL, &npairs, &pairs));
   *ncols = 3 * npairs + 2;
-  PetscCall(BVCreate(c->mesh->comm, B));
+  PetscCall(BVCreate(BoltMeshComm(BoltContactSetMesh(c)), B));
   PetscCall(BVSetSizesFromVec(*B, layout, *ncols));
   PetscCall(BVSetFromOptions(*B));
   for (PetscInt i = 0; i < npairs; i++)
@@ -36,10 +36,11 @@ static PetscErrorCode BoltROMExtractRows(BoltROM *rom, BV V, BoltLoadSet *loads)
   BoltContactWork *w;
   Vec              uc;
   BoltContactSet *c = rom->contact;
+  const PetscInt  nloc = BoltContactSetLocalSize(c);
   Vec             e;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscCalloc1(c->nlocal * rom->n + 1, &rom->Vc));
+  PetscCall(PetscCalloc1(nloc * rom->n + 1, &rom->Vc));
   PetscCall(BoltContactWorkCreate(c, &w));
   PetscCall(BoltContactWorkGetDisplacements(w, &uc));
   for (PetscInt j = 0; j < rom->n; j++) {
@@ -49,7 +50,7 @@ static PetscErrorCode BoltROMExtractRows(BoltROM *rom, BV V, BoltLoadSet *loads)
     PetscCall(BoltContactSetScatter(c, w, v));
     PetscCall(BVRestoreColumn(V, j, &v));
     PetscCall(VecGetArrayRead(uc, &u));
-    for (PetscInt i = 0; i < c->nlocal; i++) rom->Vc[i + c->nlocal * j] = u[i];
+    for (PetscInt i = 0; i < nloc; i++) rom->Vc[i + nloc * j] = u[i];
     PetscCall(VecRestoreArrayRead(uc, &u));
   }
   PetscCall(BoltContactWorkDestroy(&w));

@@ -160,7 +160,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltOperatorCreate(rom->comm, "ROM", rom->contact, &op));
   /* n^2 values: a factorisation adds K_cr to a kept copy of the structural sum */
   PetscCall(BoltOperatorSetSolver(op, "rom_", MATSOLVERPETSC, (rom->nCCM + rom->nJIM) ? PETSC_FALSE : PETSC_TRUE, PETSC_TRUE));
-  BoltOperatorState(op)->augment = rom->augment; /* -rom_contact_augment */
+  PetscCall(BoltContactStateSetAugment(BoltOperatorState(op), rom->augment)); /* -rom_contact_augment */
   PetscCall(BoltOperatorSetSystem(op, rom->Mr, NULL, rom->Kr, rom->loadr, rom->preloadr));
   PetscCall(BoltOperatorSetDamping(op, rom->Cr, rom->rayleigh[0], rom->rayleigh[1]));
   PetscCall(BoltOperatorSetContext(op, rom));
@@ -181,19 +181,19 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(MatZeroEntries(rom->Kcr));
   rom->KcrValid = rom->FrValid = rom->tnValid = PETSC_FALSE; /* a new state: its versions start afresh */
   PetscCall(PetscFree(rom->Ke));
-  PetscCall(PetscCalloc1(144 * rom->contact->nelem + 1, &rom->Ke));
+  PetscCall(PetscCalloc1(144 * BoltContactSetElementCount(rom->contact) + 1, &rom->Ke));
   PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
   PetscCall(PetscMalloc5(12 * n + 1, &rom->work, 12 * n + 1, &rom->work2, n * n + 1, &rom->dK, n * (n + 1) / 2 + 1, &rom->packed, n + 1, &rom->Fr));
   /* D_e = V_b - V_a of every local contact element, kept for the forces and K_cr */
   {
     BoltContactSet *c = rom->contact;
-    const PetscInt  m = c->nlocal;
+    const PetscInt  m = BoltContactSetLocalSize(c);
     PetscCall(PetscFree5(rom->De, rom->DeMax, rom->felem, rom->dMe, rom->dirtyElems));
-    PetscCall(PetscMalloc5(12 * n * c->nelem + 1, &rom->De, c->nelem + 1, &rom->DeMax, 12 * c->nelem + 1, &rom->felem, 144 * c->nelem + 1, &rom->dMe, c->nelem + 1, &rom->dirtyElems));
-    for (PetscInt e = 0; e < c->nelem; e++) {
+    PetscCall(PetscMalloc5(12 * n * BoltContactSetElementCount(c) + 1, &rom->De, BoltContactSetElementCount(c) + 1, &rom->DeMax, 12 * BoltContactSetElementCount(c) + 1, &rom->felem, 144 * BoltContactSetElementCount(c) + 1, &rom->dMe, BoltContactSetElementCount(c) + 1, &rom->dirtyElems));
+    for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++) {
       PetscReal *D = &rom->De[12 * n * e], mx = 0;
       for (PetscInt k = 0; k < 12; k++) {
-        PetscInt la = c->elemLocal[24 * e + k], lb = c->elemLocal[24 * e + 12 + k];
+        PetscInt la = BoltContactSetElementLocal(c)[24 * e + k], lb = BoltContactSetElementLocal(c)[24 * e + 12 + k];
         for (PetscInt j = 0; j < n; j++) {
           D[k + 12 * j] = (lb >= 0 ? PetscRealPart(rom->Vc[lb + m * j]) : 0.0) - (la >= 0 ? PetscRealPart(rom->Vc[la + m * j]) : 0.0);
           mx            = PetscMax(mx, PetscAbsReal(D[k + 12 * j]));
@@ -205,12 +205,12 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   /* with opening shapes, only the points the opening solves changed may change state: the basis
      has no shapes to open the others, and freed they chattered at the washers' rims (the
      augmented ROM, without interface reduction, can open any pair) */
-  BoltOperatorState(op)->mayChange = (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) ? rom->marked : NULL;
-  PetscCall(ROMSetUpGapRows(rom, BoltOperatorState(op)->mayChange));
+  PetscCall(BoltContactStateSetMayChange(BoltOperatorState(op), (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) ? rom->marked : NULL));
+  PetscCall(ROMSetUpGapRows(rom, BoltContactStateMayChange(BoltOperatorState(op))));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_GAPS, (void (*)(void))ROMContactGaps));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_OPEN_TRACTION, (void (*)(void))ROMOpenTraction));
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
-  PetscCall(ROMSetUpPairForces(rom, BoltOperatorState(op)->mayChange));
+  PetscCall(ROMSetUpPairForces(rom, BoltContactStateMayChange(BoltOperatorState(op))));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));
   if (rom->update) PetscCall(PetscMalloc2(2 * n + 1, &rom->fAcc, 2 * n * rom->npOwned + 1, &rom->fParts));
   rom->fGridValid = rom->fPartsValid = PETSC_FALSE;
@@ -242,22 +242,22 @@ PetscErrorCode BoltROMSetPreloadState(BoltROM *rom, BoltNewmark *nm, PetscReal p
 
   PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0)); /* sliding points first: their traction is normal */
   BoltContactStateSetAnchors(s, NULL); /* the FOM's anchors are in the frozen multipliers (raw gaps g0) */
-  for (PetscInt e = 0; e < c->nelem; e++) {
+  for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++) {
     for (PetscInt q = 0; q < 4; q++) {
-      PetscInt  gp = 4 * e + q;
-      PetscReal lam[3], g[3];
+      PetscInt   gp     = 4 * e + q;
+      PetscReal  lam[3], g[3], *lambda = &BoltContactStateLambda(s)[3 * gp];
       /* open in the preload: no traction, and none frozen here. Under friction none anywhere: the
          normal is the penalty's alone, and the ROM solves its own preloaded state on the FOM's set
          (its pairs stick or slip there as the FOM's did) */
       if (!rom->active0[gp] || BoltContactStateHasFriction(s)) {
-        s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
+        lambda[0] = lambda[1] = lambda[2] = 0;
         continue;
       }
       for (PetscInt k = 0; k < 3; k++) {
         lam[k] = rom->lambda0[3 * gp + k] * preloadForce;
         g[k]   = -g0Share * rom->gap0[3 * gp + k] * preloadForce;
       }
-      BoltContactStateTrialOf(s, gp, lam, g, &s->lambda[3 * gp]);
+      BoltContactStateTrialOf(s, gp, lam, g, lambda);
     }
   }
   BoltContactStateChanged(s);
@@ -305,15 +305,15 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(BoltDirectSolverCreate(rom->comm, NULL, A, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
   PetscCall(KSPSolve(ksp, f, q));
   /* compare at the contact DOFs and the probe */
-  PetscCall(BoltContactSetScatter(c, sFull->work, q));
-  PetscCall(BoltContactWorkGetDisplacements(sFull->work, &ucFull));
+  PetscCall(BoltContactSetScatter(c, BoltContactStateWork(sFull), q));
+  PetscCall(BoltContactWorkGetDisplacements(BoltContactStateWork(sFull), &ucFull));
   PetscCall(BoltOperatorContactDisplacements(op, qr));
-  PetscCall(BoltContactWorkGetDisplacements(BoltOperatorState(op)->work, &ucRed));
+  PetscCall(BoltContactWorkGetDisplacements(BoltContactStateWork(BoltOperatorState(op)), &ucRed));
   {
     const PetscScalar *a, *b;
     PetscCall(VecGetArrayRead(ucFull, &a));
     PetscCall(VecGetArrayRead(ucRed, &b));
-    for (PetscInt i = 0; i < c->nlocal; i++) {
+    for (PetscInt i = 0; i < BoltContactSetLocalSize(c); i++) {
       num[0] += PetscSqr(PetscRealPart(a[i] - b[i]));
       den[0] += PetscSqr(PetscRealPart(a[i]));
     }

@@ -15,7 +15,7 @@ static PetscErrorCode BoltOwnedContactDofs(BoltContactSet *c, Vec layout, PetscI
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(layout, &mark));
   PetscCall(VecZeroEntries(mark));
-  for (PetscInt e = 0; e < c->nelem; e++)
+  for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++)
     for (PetscInt k = 0; k < 24; k++)
       if (BoltContactSetElementDofs(c, e)[k] >= 0) PetscCall(VecSetValue(mark, BoltContactSetElementDofs(c, e)[k], 1.0, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(mark));
@@ -61,7 +61,7 @@ static PetscErrorCode BoltPointRows(BoltMesh *m, BV V, const char group[], Petsc
   PetscFunctionBeginUser;
   PetscCall(PetscArrayzero(rows, 3 * n));
   PetscCall(BoltMeshGroupVertices(m, group, PETSC_TRUE, &nv, &verts));
-  PetscCall(MPIU_Allreduce(&nv, &total, 1, MPIU_INT, MPI_SUM, m->comm));
+  PetscCall(MPIU_Allreduce(&nv, &total, 1, MPIU_INT, MPI_SUM, BoltMeshComm(m)));
   *found = total == 1 ? PETSC_TRUE : PETSC_FALSE;
   if (nv == 1) {
     PetscInt idx[3];
@@ -81,7 +81,7 @@ static PetscErrorCode BoltPointRows(BoltMesh *m, BV V, const char group[], Petsc
       PetscCall(BVRestoreColumn(V, j, &col));
     }
   PetscCall(PetscFree(verts));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rows, (PetscMPIInt)(3 * n), MPIU_SCALAR, MPIU_SUM, m->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rows, (PetscMPIInt)(3 * n), MPIU_SCALAR, MPIU_SUM, BoltMeshComm(m)));
   PetscFunctionReturn(0);
 }
 
@@ -93,19 +93,20 @@ static PetscErrorCode BoltPointRows(BoltMesh *m, BV V, const char group[], Petsc
 static PetscErrorCode BoltROMSavePreloadState(BoltROM *rom, PetscViewer v)
 {
   BoltContactSet *c = rom->contact;
+  const PetscInt  ne = BoltContactSetElementCount(c);
   PetscScalar    *buf;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(BOLT_ROM_STATE * c->nelem + 1, &buf));
-  for (PetscInt e = 0; e < c->nelem; e++) buf[e] = BoltContactSetElementKey(c, e);
-  PetscCall(BoltHDF5WriteValues(v, rom->comm, "state_keys", c->nelem, 1, buf, PETSC_FALSE));
-  for (PetscInt e = 0; e < c->nelem; e++) {
+  PetscCall(PetscMalloc1(BOLT_ROM_STATE * ne + 1, &buf));
+  for (PetscInt e = 0; e < ne; e++) buf[e] = BoltContactSetElementKey(c, e);
+  PetscCall(BoltHDF5WriteValues(v, rom->comm, "state_keys", ne, 1, buf, PETSC_FALSE));
+  for (PetscInt e = 0; e < ne; e++) {
     for (PetscInt i = 0; i < 12; i++) buf[BOLT_ROM_STATE * e + i] = rom->lambda0[12 * e + i];
     for (PetscInt i = 0; i < 12; i++) buf[BOLT_ROM_STATE * e + 12 + i] = rom->gap0[12 * e + i];
     /* 1 closed, 2 closed and sliding (strict law), 0 open; plus 4 where the opening shapes' solves changed it */
     for (PetscInt i = 0; i < 4; i++) buf[BOLT_ROM_STATE * e + 24 + i] = (rom->active0[4 * e + i] ? (rom->released0[4 * e + i] ? 2.0 : 1.0) : 0.0) + (rom->marked && rom->marked[4 * e + i] ? 4.0 : 0.0);
   }
-  PetscCall(BoltHDF5WriteValues(v, rom->comm, "state", BOLT_ROM_STATE * c->nelem, 1, buf, PETSC_FALSE));
+  PetscCall(BoltHDF5WriteValues(v, rom->comm, "state", BOLT_ROM_STATE * ne, 1, buf, PETSC_FALSE));
   PetscCall(PetscFree(buf));
   PetscFunctionReturn(0);
 }
@@ -122,10 +123,10 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
   PetscCall(PetscFree(keys));
   PetscCall(BoltReadAll(v, rom->comm, "state", &n, &x));
   PetscCheck(n == BOLT_ROM_STATE * BoltKeyIndexSize(ix), rom->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged (preloaded state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements): rebuild it with -rom_rebuild", file, n, BoltKeyIndexSize(ix));
-  PetscCall(PetscMalloc4(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0, 4 * c->nelem + 1, &rom->released0));
+  PetscCall(PetscMalloc4(12 * BoltContactSetElementCount(c) + 1, &rom->lambda0, 12 * BoltContactSetElementCount(c) + 1, &rom->gap0, 4 * BoltContactSetElementCount(c) + 1, &rom->active0, 4 * BoltContactSetElementCount(c) + 1, &rom->released0));
   PetscCall(PetscFree(rom->marked));
-  PetscCall(PetscMalloc1(4 * c->nelem + 1, &rom->marked));
-  for (PetscInt e = 0; e < c->nelem; e++) {
+  PetscCall(PetscMalloc1(4 * BoltContactSetElementCount(c) + 1, &rom->marked));
+  for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++) {
     PetscInt row;
     PetscCall(BoltKeyIndexFind(ix, BoltContactSetElementKey(c, e), &row));
     PetscCheck(row >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for contact element %" PetscInt_FMT ": rebuild it with -rom_rebuild", file, BoltContactSetElementKey(c, e));
@@ -207,7 +208,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
       Vec                keys;
       const PetscScalar *k;
       PetscInt           kstart;
-      PetscCall(BoltMeshDofKeys(rom->contact->mesh, BoltLoadSetLoad(loads), &keys));
+      PetscCall(BoltMeshDofKeys(BoltContactSetMesh(rom->contact), BoltLoadSetLoad(loads), &keys));
       PetscCall(VecGetOwnershipRange(keys, &kstart, NULL));
       PetscCall(VecGetArrayRead(keys, &k));
       for (PetscInt i = 0; i < ncd; i++) y[i] = k[cd[i] - kstart];
@@ -307,17 +308,17 @@ static PetscErrorCode ROMLoadContactRows(BoltROM *rom, BoltContactSet *c, BoltLo
       perm[i]    = i;
     }
     PetscCall(PetscSortIntWithArray(ncd, fileKey, perm));
-    PetscCall(BoltMeshDofKeys(c->mesh, BoltLoadSetLoad(loads), &keys));
-    PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->nlocal, &ckeys));
-    PetscCall(VecScatterBegin(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(c->scatter, keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(PetscCalloc1(c->nlocal * n + 1, &rom->Vc));
+    PetscCall(BoltMeshDofKeys(BoltContactSetMesh(c), BoltLoadSetLoad(loads), &keys));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, BoltContactSetLocalSize(c), &ckeys));
+    PetscCall(VecScatterBegin(BoltContactSetScatterContext(c), keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(BoltContactSetScatterContext(c), keys, ckeys, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(PetscCalloc1(BoltContactSetLocalSize(c) * n + 1, &rom->Vc));
     PetscCall(VecGetArrayRead(ckeys, &k));
-    for (PetscInt i = 0; i < c->nlocal; i++) {
+    for (PetscInt i = 0; i < BoltContactSetLocalSize(c); i++) {
       PetscInt key = (PetscInt)PetscRealPart(k[i]), loc;
       PetscCall(PetscFindInt(key, ncd, fileKey, &loc));
-      PetscCheck(loc >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT " (key %" PetscInt_FMT "): rebuild it with -rom_rebuild", file, c->localGlobal[i], key);
-      for (PetscInt j = 0; j < n; j++) rom->Vc[i + c->nlocal * j] = Vc[perm[loc] * n + j];
+      PetscCheck(loc >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT " (key %" PetscInt_FMT "): rebuild it with -rom_rebuild", file, BoltContactSetLocalGlobal(c)[i], key);
+      for (PetscInt j = 0; j < n; j++) rom->Vc[i + BoltContactSetLocalSize(c) * j] = Vc[perm[loc] * n + j];
     }
     PetscCall(VecRestoreArrayRead(ckeys, &k));
     PetscCall(VecDestroy(&ckeys));

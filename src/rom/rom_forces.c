@@ -9,16 +9,17 @@ PetscErrorCode ROMContactDisplacements(BoltOperator *op, Vec q)
 {
   BoltROM           *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet    *c   = rom->contact;
+  const PetscInt  nloc = BoltContactSetLocalSize(c);
   const PetscScalar *x;
   PetscScalar       *u;
   Vec                uc;
 
   PetscFunctionBeginUser;
-  if (!c->nlocal) PetscFunctionReturn(0);
-  PetscCall(BoltContactWorkGetDisplacements(BoltOperatorState(op)->work, &uc)); /* this operator's own */
+  if (!nloc) PetscFunctionReturn(0);
+  PetscCall(BoltContactWorkGetDisplacements(BoltContactStateWork(BoltOperatorState(op)), &uc)); /* this operator's own */
   PetscCall(VecGetArrayRead(q, &x));
   PetscCall(VecGetArray(uc, &u));
-  ROMRowsTimes(c->nlocal, rom->n, rom->Vc, c->nlocal, x, u);
+  ROMRowsTimes(nloc, rom->n, rom->Vc, nloc, x, u);
   PetscCall(VecRestoreArray(uc, &u));
   PetscCall(VecRestoreArrayRead(q, &x));
   PetscFunctionReturn(0);
@@ -45,7 +46,7 @@ static PetscErrorCode ROMPairForces(BoltROM *rom, const PetscReal lambda[], Pets
   PetscReal       b = 0;
 
   PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < c->nelem; e++) BoltContactElementForces(c, e, lambda, &rom->felem[12 * e]);
+  for (PetscInt e = 0, ne = BoltContactSetElementCount(c); e < ne; e++) BoltContactElementForces(c, e, lambda, &rom->felem[12 * e]);
   PetscCall(PetscSFReduceBegin(rom->npSF, MPIU_REAL, rom->felem, rom->npSlotF, MPI_REPLACE));
   PetscCall(PetscSFReduceEnd(rom->npSF, MPIU_REAL, rom->felem, rom->npSlotF, MPI_REPLACE));
   for (PetscInt k = 0; k < rom->npOwned; k++) {
@@ -70,6 +71,7 @@ static PetscErrorCode ROMPairForces(BoltROM *rom, const PetscReal lambda[], Pets
 PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange[])
 {
   BoltContactSet *c = rom->contact;
+  const PetscInt  ne = BoltContactSetElementCount(c);
   const PetscInt  n = rom->n, recLen = 1 + 3 * n;
   PetscMPIInt     size, rank;
   PetscInt        nmine = 0, total, nrec, npair = 0, nleaves = 0, nsend = 0, own = 0, nslots = 0, *recs, *all, *count, *ilocal, *npts;
@@ -85,8 +87,8 @@ PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange[])
   PetscCall(PetscFree3(rom->npRowOf, rom->npRows, rom->npGap));
   PetscCall(PetscFree2(rom->npRowsAll, rom->npOfPoint));
   PetscCall(PetscSFDestroy(&rom->npSF));
-  PetscCall(PetscMalloc1(24 * c->nelem + 1, &recs));
-  for (PetscInt e = 0; e < c->nelem; e++)
+  PetscCall(PetscMalloc1(24 * ne + 1, &recs));
+  for (PetscInt e = 0; e < ne; e++)
     for (PetscInt a = 0; a < 4; a++) {
       PetscInt *r = &recs[6 * nmine];
       if (BoltContactSetElementDofs(c, e)[3 * a] < 0 && BoltContactSetElementDofs(c, e)[12 + 3 * a] < 0) continue; /* both nodes clamped */
@@ -123,8 +125,8 @@ PetscErrorCode ROMSetUpPairForces(BoltROM *rom, const PetscBool mayChange[])
     if (k % size == rank && live[k]) rom->npLive++;
   }
   PetscCall(PetscMalloc6(rom->npOwned + 1, &rom->npSlotStart, rom->npOwned + 1, &rom->npGlobalOf, rom->npOwned + 1, &rom->npDMax, 3 * nslots + 1, &rom->npSlotF, 3 * rom->npOwned + 1, &rom->npF, 3 * rom->npOwned + 1, &rom->npFSum));
-  PetscCall(PetscMalloc2(3 * n * npair + 1, &rom->npRowsAll, 4 * c->nelem + 1, &rom->npOfPoint));
-  for (PetscInt i = 0; i < 4 * c->nelem; i++) rom->npOfPoint[i] = -1;
+  PetscCall(PetscMalloc2(3 * n * npair + 1, &rom->npRowsAll, 4 * ne + 1, &rom->npOfPoint));
+  for (PetscInt i = 0; i < 4 * ne; i++) rom->npOfPoint[i] = -1;
   PetscCall(PetscMalloc1(recLen * nmine + 1, &send));
   for (PetscMPIInt r = 0; r < size; r++) count[r] = 0;
   for (PetscInt k = 0; k < npair; k++) {
@@ -221,7 +223,7 @@ static PetscErrorCode ROMContactForcesChanged(BoltOperator *op, const PetscReal 
   PetscCall(BoltExactSumEnd(rom->sum, rom->comm, y));
   PetscCall(PetscArraycpy(rom->Fr, y, n));
   PetscCall(VecRestoreArray(F, &y));
-  rom->FrVersion = BoltOperatorState(op)->version;
+  rom->FrVersion = BoltContactStateVersion(BoltOperatorState(op));
   rom->FrValid   = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -237,12 +239,12 @@ PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec 
   const PetscInt n   = rom->n;
   /* the state's multipliers, with or without its anchors (a rank without anchors hands lambda
      itself): a decision every rank takes alike, as the cache skips reductions */
-  const PetscBool own = (PetscBool)(lambda == BoltOperatorState(op)->lambda || lambda == BoltOperatorState(op)->lambdaForce);
+  const PetscBool own = (PetscBool)(lambda == BoltContactStateLambda(BoltOperatorState(op)) || lambda == BoltContactStateLambdaForce(BoltOperatorState(op)));
   PetscReal       bound, *g = rom->work;
   PetscScalar    *y;
 
   PetscFunctionBeginUser;
-  if (own && rom->FrValid && rom->FrVersion == BoltOperatorState(op)->version) {
+  if (own && rom->FrValid && rom->FrVersion == BoltContactStateVersion(BoltOperatorState(op))) {
     PetscCall(VecGetArray(F, &y));
     PetscCall(PetscArraycpy(y, rom->Fr, n));
     PetscCall(VecRestoreArray(F, &y));
@@ -262,7 +264,7 @@ PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec 
   PetscCall(BoltExactSumEnd(rom->sum, rom->comm, y));
   if (own) {
     PetscCall(PetscArraycpy(rom->Fr, y, n));
-    rom->FrVersion = BoltOperatorState(op)->version;
+    rom->FrVersion = BoltContactStateVersion(BoltOperatorState(op));
     rom->FrValid   = PETSC_TRUE;
   }
   PetscCall(VecRestoreArray(F, &y));

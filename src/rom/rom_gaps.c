@@ -15,14 +15,18 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
 {
   BoltROM           *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet    *c   = rom->contact;
+  BoltContactState  *s   = BoltOperatorState(op);
+  const PetscInt     ngp = 4 * BoltContactSetElementCount(c), quadrature = BoltContactSetQuadrature(c);
+  const PetscReal   *gpN = BoltContactSetShapeValues(c), *gpNormal = BoltContactSetNormals(c), activationGap = BoltContactStateActivationGap(s);
+  const PetscBool   *active = BoltContactStateActive(s), *mayChange = BoltContactStateMayChange(s);
   const PetscScalar *x;
   PetscBool          whole;
   PetscReal          xmax = 0;
 
   PetscFunctionBeginUser;
-  if (BoltOperatorState(op)->augment) {
+  if (BoltContactStateAugmented(s)) {
     PetscCall(ROMContactDisplacements(op, q));
-    PetscCall(BoltContactSetGapsOf(c, BoltOperatorState(op)->work, gap));
+    PetscCall(BoltContactSetGapsOf(c, BoltContactStateWork(s), gap));
     PetscFunctionReturn(0);
   }
   if (rom->pairGaps) { /* the owned pairs' gaps (the held ones once), sent to their points */
@@ -33,7 +37,7 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
     for (PetscInt k = 0; k < rom->npOwned; k++)
       for (PetscInt i = rom->npSlotStart[k]; i < rom->npSlotStart[k + 1]; i++)
         for (PetscInt l = 0; l < 3; l++) rom->npSlotF[3 * i + l] = PetscRealPart(rom->npGap[rom->npRowOf[k] + l]);
-    PetscCall(PetscArrayzero(gap, 12 * c->nelem)); /* a point whose nodes are both clamped has no gap */
+    PetscCall(PetscArrayzero(gap, 3 * ngp)); /* a point whose nodes are both clamped has no gap */
     PetscCall(PetscSFBcastBegin(rom->npSF, MPIU_REAL, rom->npSlotF, gap, MPI_REPLACE));
     PetscCall(PetscSFBcastEnd(rom->npSF, MPIU_REAL, rom->npSlotF, gap, MPI_REPLACE));
     PetscFunctionReturn(0);
@@ -43,15 +47,15 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
      reads their gaps) once, for gaps that stay defined */
   ROMRowsTimes(rom->heldRowsDone && !rom->gapsEverywhere ? rom->nLiveRows : rom->nGapRows, rom->n, rom->Rn, rom->nGapRows, x, rom->gnRow);
   rom->heldRowsDone = PETSC_TRUE;
-  whole = (PetscBool)(BoltContactSetIsComplementarity(c) && c->reanchor && !rom->wholeRows && c->quadrature == BOLT_QUADRATURE_NODAL);
+  whole = (PetscBool)(BoltContactSetIsComplementarity(c) && BoltContactSetReanchor(c) && !rom->wholeRows && quadrature == BOLT_QUADRATURE_NODAL);
   for (PetscInt j = 0; j < rom->n && whole; j++) xmax = PetscMax(xmax, PetscAbsReal(PetscRealPart(x[j])));
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+  for (PetscInt gp = 0; gp < ngp; gp++) {
     const PetscInt  *r = &rom->gpRows[4 * gp];
-    const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp]; /* gpN: 4 per point */
+    const PetscReal *N = &gpN[4 * gp], *n = &gpNormal[3 * gp]; /* gpN: 4 per point */
     PetscReal       *g = &gap[3 * gp];
     if (!rom->wholeRows) {
       PetscReal gn = 0;
-      if (c->quadrature == BOLT_QUADRATURE_NODAL) gn = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4]]) : 0; /* its own node, weight 1 */
+      if (quadrature == BOLT_QUADRATURE_NODAL) gn = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4]]) : 0; /* its own node, weight 1 */
       else
         for (PetscInt a = 0; a < 4; a++)
           if (r[a] >= 0) gn += N[a] * PetscRealPart(rom->gnRow[r[a]]);
@@ -60,12 +64,12 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
          node pair's rows of D_e in a fixed order (the same bits on any partition). Only where it
          may close: elsewhere the decision -g.n > activationGap is the same with the normal gap
          alone, whose rounding differs from the whole gap's by less than the bound. */
-      if (whole && !BoltOperatorState(op)->active[gp] && (rom->gapsEverywhere || ((!BoltOperatorState(op)->mayChange || BoltOperatorState(op)->mayChange[gp]) && -gn > BoltOperatorState(op)->activationGap - rom->wholeGapBound[gp] * xmax))) {
+      if (whole && !active[gp] && (rom->gapsEverywhere || ((!mayChange || mayChange[gp]) && -gn > activationGap - rom->wholeGapBound[gp] * xmax))) {
         PetscScalar whole3[3];
         ROMRowsTimes(3, rom->n, &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)], 12, x, whole3);
         for (PetscInt k = 0; k < 3; k++) g[k] = PetscRealPart(whole3[k]);
       }
-    } else if (c->quadrature == BOLT_QUADRATURE_NODAL) /* its own node, weight 1 */
+    } else if (quadrature == BOLT_QUADRATURE_NODAL) /* its own node, weight 1 */
       for (PetscInt k = 0; k < 3; k++) g[k] = r[gp % 4] >= 0 ? PetscRealPart(rom->gnRow[r[gp % 4] + k]) : 0;
     else
       for (PetscInt k = 0; k < 3; k++) {
@@ -89,38 +93,41 @@ PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
   BoltROM          *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet   *c   = rom->contact;
   BoltContactState *s   = BoltOperatorState(op);
-  const PetscInt    ngp = 4 * c->nelem;
+  const PetscInt    ngp = 4 * BoltContactSetElementCount(c);
+  const PetscReal  *gpNormal = BoltContactSetNormals(c), *gapAll = BoltContactStateGap(s);
 
   PetscFunctionBeginUser;
-  if (s->augment || BoltContactStateHasFriction(s) || (s->openTest == BOLT_OPEN_NODAL && !(c->quadrature == BOLT_QUADRATURE_NODAL && rom->flat))) {
+  if (BoltContactStateAugmented(s) || BoltContactStateHasFriction(s) || (BoltContactStateOpenTest(s) == BOLT_OPEN_NODAL && !(BoltContactSetQuadrature(c) == BOLT_QUADRATURE_NODAL && rom->flat))) {
     PetscCall(BoltContactStateOpenTraction(s, tn));
     PetscFunctionReturn(0);
   }
-  if (!rom->tnValid || rom->tnVersion != s->version) {
+  if (!rom->tnValid || rom->tnVersion != BoltContactStateVersion(s)) {
     PetscReal *tau; /* 3 per point: the tractions whose normal part is wanted */
     PetscCall(BoltGrowReal(&rom->tnTau, &rom->tnTauAlloc, 3 * ngp + 1));
     tau = rom->tnTau;
     for (PetscInt pass = 0; pass < 2; pass++) {
-      PetscReal *out = pass ? rom->tnK : rom->tnC;
+      PetscReal       *out    = pass ? rom->tnK : rom->tnC;
+      const PetscBool *active = BoltContactStateActive(s);
+      const PetscReal *lambda = BoltContactStateLambda(s);
       for (PetscInt gp = 0; gp < ngp; gp++) {
-        const PetscReal *n    = &c->gpNormal[3 * gp], zero[3] = {0, 0, 0};
+        const PetscReal *n    = &gpNormal[3 * gp], zero[3] = {0, 0, 0};
         PetscReal       *t    = &tau[3 * gp];
-        if (!s->active[gp]) t[0] = t[1] = t[2] = 0;
-        else if (!pass) PetscCall(PetscArraycpy(t, &s->lambda[3 * gp], 3));
+        if (!active[gp]) t[0] = t[1] = t[2] = 0;
+        else if (!pass) PetscCall(PetscArraycpy(t, &lambda[3 * gp], 3));
         else BoltContactStateTrialOf(s, gp, zero, n, t);
       }
-      if (s->openTest == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, tau, out));
+      if (BoltContactStateOpenTest(s) == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, BoltContactStateWork(s), tau, out));
       else
         for (PetscInt gp = 0; gp < ngp; gp++) {
-          const PetscReal *t = &tau[3 * gp], *n = &c->gpNormal[3 * gp];
+          const PetscReal *t = &tau[3 * gp], *n = &gpNormal[3 * gp];
           out[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
         }
     }
-    rom->tnVersion = s->version;
+    rom->tnVersion = BoltContactStateVersion(s);
     rom->tnValid   = PETSC_TRUE;
   }
   for (PetscInt gp = 0; gp < ngp; gp++) {
-    const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
+    const PetscReal *g = &gapAll[3 * gp], *n = &gpNormal[3 * gp];
     tn[gp] = rom->tnC[gp] + rom->tnK[gp] * (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]);
   }
   PetscFunctionReturn(0);
@@ -140,7 +147,8 @@ static void ROMRowNormal(const PetscReal n[3], PetscReal nr[3])
 PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
 {
   BoltContactSet *c = rom->contact;
-  const PetscInt  n = rom->n, ngp = 4 * c->nelem;
+  const PetscInt  nloc = BoltContactSetLocalSize(c);
+  const PetscInt  n = rom->n, ngp = 4 * BoltContactSetElementCount(c);
   PetscInt       *first, *next, *rowGp, *rowNode, *pos, width;
   PetscBool       flat = PETSC_TRUE, *live;
 
@@ -148,15 +156,15 @@ PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
   PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
   PetscCall(PetscMalloc4(4 * ngp + 1, &rom->gpRows, ngp + 1, &rom->tnC, ngp + 1, &rom->tnK, ngp + 1, &rom->wholeGapBound));
-  PetscCall(PetscMalloc4(c->nlocal + 1, &first, 4 * ngp + 1, &next, 4 * ngp + 1, &rowGp, 4 * ngp + 1, &rowNode));
+  PetscCall(PetscMalloc4(nloc + 1, &first, 4 * ngp + 1, &next, 4 * ngp + 1, &rowGp, 4 * ngp + 1, &rowNode));
   for (PetscInt gp = 0; gp < ngp; gp++) {
-    const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
-    const PetscReal *N = &c->gpN[4 * gp], *n = &c->gpNormal[3 * gp];
+    const PetscInt  *loc = &BoltContactSetElementLocal(c)[24 * (gp / 4)];
+    const PetscReal *N = &BoltContactSetShapeValues(c)[4 * gp], *n = &BoltContactSetNormals(c)[3 * gp];
     for (PetscInt a = 0; a < 4; a++) {
       const PetscInt *ii = loc[12 + 3 * a] >= 0 ? &loc[12 + 3 * a] : &loc[3 * a]; /* the pair's DOFs on side b, or a */
       PetscReal       A[3], x[3];
       if (N[a] == 0 || ii[0] < 0) continue;
-      for (PetscInt k = 0; k < 3; k++) A[k] = c->nodalArea[ii[k]];
+      for (PetscInt k = 0; k < 3; k++) A[k] = BoltContactSetNodalArea(c)[ii[k]];
       x[0] = A[1] * n[2] - A[2] * n[1]; /* A x n */
       x[1] = A[2] * n[0] - A[0] * n[2];
       x[2] = A[0] * n[1] - A[1] * n[0];
@@ -168,7 +176,7 @@ PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
   rom->wholeRows = (PetscBool)(!rom->flat || BoltContactSetHasFriction(c));
   width          = rom->wholeRows ? 3 : 1;
   /* each point's gap is its own node pair's: the pairs' owners make them (ROMSetUpPairForces) */
-  rom->pairGaps = (PetscBool)(rom->wholeRows && c->quadrature == BOLT_QUADRATURE_NODAL && !rom->augment);
+  rom->pairGaps = (PetscBool)(rom->wholeRows && BoltContactSetQuadrature(c) == BOLT_QUADRATURE_NODAL && !rom->augment);
   if (rom->pairGaps) {
     rom->nGapRows = rom->nLiveRows = 0;
     rom->heldRowsDone = PETSC_FALSE;
@@ -176,22 +184,22 @@ PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
     PetscCall(PetscFree4(first, next, rowGp, rowNode));
     PetscFunctionReturn(0);
   }
-  for (PetscInt i = 0; i < c->nlocal; i++) first[i] = -1;
+  for (PetscInt i = 0; i < nloc; i++) first[i] = -1;
   rom->nGapRows = 0;
   for (PetscInt gp = 0; gp < ngp; gp++) {
-    const PetscInt  *loc = &c->elemLocal[24 * (gp / 4)];
-    const PetscReal *N = &c->gpN[4 * gp];
+    const PetscInt  *loc = &BoltContactSetElementLocal(c)[24 * (gp / 4)];
+    const PetscReal *N = &BoltContactSetShapeValues(c)[4 * gp];
     PetscReal        n[3];
-    ROMRowNormal(&c->gpNormal[3 * gp], n);
+    ROMRowNormal(&BoltContactSetNormals(c)[3 * gp], n);
     for (PetscInt a = 0; a < 4; a++) {
       const PetscInt slot = loc[12 + 3 * a] >= 0 ? loc[12 + 3 * a] : loc[3 * a]; /* the pair's first DOF on side b, or a */
       PetscInt       r;
       rom->gpRows[4 * gp + a] = -1;
-      PetscCheck(c->quadrature != BOLT_QUADRATURE_NODAL || N[a] == (a == gp % 4 ? 1.0 : 0.0), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Nodal quadrature: point %" PetscInt_FMT " is not at its own node", gp);
+      PetscCheck(BoltContactSetQuadrature(c) != BOLT_QUADRATURE_NODAL || N[a] == (a == gp % 4 ? 1.0 : 0.0), PETSC_COMM_SELF, PETSC_ERR_PLIB, "Nodal quadrature: point %" PetscInt_FMT " is not at its own node", gp);
       if (N[a] == 0 || slot < 0) continue; /* no weight, or both sides clamped: no gap */
       for (r = first[slot]; r >= 0; r = next[r]) {
         PetscReal m[3];
-        ROMRowNormal(&c->gpNormal[3 * rowGp[r]], m);
+        ROMRowNormal(&BoltContactSetNormals(c)[3 * rowGp[r]], m);
         if (rom->wholeRows || (m[0] == n[0] && m[1] == n[1] && m[2] == n[2])) break;
       }
       if (r < 0) {
@@ -230,11 +238,11 @@ PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
     rom->wholeGapBound[gp] = 1e-9 * b;
   }
   PetscCall(PetscMalloc2(rom->nGapRows * n + 1, &rom->Rn, rom->nGapRows + 1, &rom->gnRow));
-  for (PetscInt i = 0; i < c->nlocal; i++)
+  for (PetscInt i = 0; i < nloc; i++)
     for (PetscInt r = first[i]; r >= 0; r = next[r]) {
       const PetscReal *D = &rom->De[12 * n * (rowGp[r] / 4) + 3 * rowNode[r]];
       PetscReal        nr[3];
-      ROMRowNormal(&c->gpNormal[3 * rowGp[r]], nr);
+      ROMRowNormal(&BoltContactSetNormals(c)[3 * rowGp[r]], nr);
       for (PetscInt j = 0; j < n; j++) {
         if (!rom->wholeRows) rom->Rn[pos[r] + rom->nGapRows * j] = nr[0] * D[12 * j] + nr[1] * D[12 * j + 1] + nr[2] * D[12 * j + 2];
         else

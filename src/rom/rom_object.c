@@ -124,7 +124,7 @@ PetscErrorCode BoltROMCheckOptions(BoltROM *rom, BoltContactSet *contact)
   BoltReductionOptions *o = &rom->opt;
 
   PetscFunctionBeginUser;
-  PetscCheck(o->coneShapes == 0 || BoltContactSetHasFriction(contact), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes needs a frictional law: add -contact_law coulomb (the %s law has no cone)", contact->lawType);
+  PetscCheck(o->coneShapes == 0 || BoltContactSetHasFriction(contact), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes needs a frictional law: add -contact_law coulomb (the %s law has no cone)", BoltContactSetLawType(contact));
   PetscCheck(o->coneModes == 0 || (o->coneShapes > 0 && o->nSnapshotModes > 0), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_modes compresses cone shapes with a training run's snapshots: add -rom_cone_shapes r and -rom_snapshot_modes k");
   PetscFunctionReturn(0);
 }

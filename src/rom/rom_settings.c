@@ -69,7 +69,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
      close every active gap are not unique (their signs, which decide the active set, are
      arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps
      the reduced contact problem well posed, so it is the default there. */
-  rom->augment = o->augmentSet ? o->augment : (PetscBool)(contact->augment && o->nCCM + o->nJIM == 0);
+  rom->augment = o->augmentSet ? o->augment : (PetscBool)(BoltContactSetAugmented(contact) && o->nCCM + o->nJIM == 0);
   PetscCheck(o->krylov, o->comm, PETSC_ERR_ARG_WRONGSTATE, "BoltROMBuild needs the Krylov options: configure the reduction with BoltReductionSetFromOptions");
   kry = o->krylov;
   PetscCall(BoltROMFingerprintScene(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, &rom->fingerprint));
@@ -80,7 +80,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
      the paper's), where the penalty law alone matches the augmented FOM. Without the closed-contact
      Krylov shapes so stiff a penalty locks the reduced interface, and 4e3 E/m (20 x the paper's)
      does best (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
-  rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && contact->augment ? (o->nClosed > 0 ? 1e5 : 4e3) / contact->penaltyFactor : 1.0);
+  rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && BoltContactSetAugmented(contact) ? (o->nClosed > 0 ? 1e5 : 4e3) / BoltContactSetPenaltyFactor(contact) : 1.0);
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
   staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0));
   rom->nClosed = staticShapes ? o->nClosed : 0;
@@ -94,7 +94,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) ? o->coneShapes : 0;
   rom->coneTraction = o->coneTraction;
   rom->coneModes    = rom->coneShapes > 0 ? o->coneModes : 0;
-  staticPenaltyScale = o->staticPenaltyScale > 0 ? o->staticPenaltyScale : PetscMax(1.0, 2e6 / contact->penaltyFactor); /* 2e6 E/m */
+  staticPenaltyScale = o->staticPenaltyScale > 0 ? o->staticPenaltyScale : PetscMax(1.0, 2e6 / BoltContactSetPenaltyFactor(contact)); /* 2e6 E/m */
   PetscCall(ROMFingerprintShapes(o, rom, staticShapes, staticPenaltyScale));
   rom->staticShapes       = staticShapes;
   rom->staticPenaltyScale = staticPenaltyScale;

@@ -144,13 +144,14 @@ PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
   BoltROM          *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet   *c   = rom->contact;
   BoltContactState *s   = BoltOperatorState(op);
+  PetscBool        *stale = BoltContactStateDirty(s); /* elements whose block changed */
   const PetscInt  n   = rom->n;
   PetscInt        ndirty = 0, *dirty = rom->dirtyElems;
   PetscReal       bound = 0, *delta = rom->dMe, *T = rom->work2, *dK = rom->dK, Knew[576];
 
   PetscFunctionBeginUser;
   /* the same state as at the last update: nothing is due (and no rank needs to ask the others) */
-  if (rom->KcrValid && rom->KcrVersion == s->version) {
+  if (rom->KcrValid && rom->KcrVersion == BoltContactStateVersion(s)) {
     *Kc = rom->Kcr;
     PetscFunctionReturn(0);
   }
@@ -159,9 +160,9 @@ PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
      no gap the penalty's round-off (through K_e it would be about eps_N |V|^2 u, large under a
      near-hard penalty against the joint's soft stiffness). First the change of M of every
      element whose points changed, and a bound of its reduced part for the exact sum */
-  for (PetscInt e = 0; e < c->nelem; e++) {
+  for (PetscInt e = 0, ne = BoltContactSetElementCount(c); e < ne; e++) {
     PetscReal *d = &delta[144 * ndirty], size = 0;
-    if (!s->dirty[e]) continue;
+    if (!stale[e]) continue;
     PetscCall(BoltContactStateElementStiffness(s, e, Knew));
     for (PetscInt a = 0; a < 12; a++)
       for (PetscInt b = 0; b < 12; b++) {
@@ -169,20 +170,20 @@ PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
         rom->Ke[144 * e + 12 * a + b] = Knew[24 * a + b];
         size += PetscAbsReal(d[12 * a + b]);
       }
-    s->dirty[e] = PETSC_FALSE;
+    stale[e] = PETSC_FALSE;
     BoltROMUpdateSummed(rom->update, rom, e);
     bound       = PetscMax(bound, PetscSqr(rom->DeMax[e]) * size);
     dirty[ndirty++] = e;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, rom->comm));
-  if (bound > 0 && c->quadrature == BOLT_QUADRATURE_NODAL) PetscCall(ROMContactStiffnessNodePairs(rom, ndirty, dirty, delta));
+  if (bound > 0 && BoltContactSetQuadrature(c) == BOLT_QUADRATURE_NODAL) PetscCall(ROMContactStiffnessNodePairs(rom, ndirty, dirty, delta));
   else if (bound > 0) {
     /* K_cr += sum_e D_e' (M_new - M_old) D_e: per element by BLAS (the same call on the same data
        on any partition), summed exactly over its upper triangle */
     PetscBLASInt bn, b12 = 12;
     PetscScalar  one = 1.0, zero = 0.0, *packed = rom->packed;
     PetscCall(PetscBLASIntCast(n, &bn));
-    PetscCall(BoltExactSumBegin(rom->sum, n * (n + 1) / 2, bound, c->ngpGlobal / 4));
+    PetscCall(BoltExactSumBegin(rom->sum, n * (n + 1) / 2, bound, BoltContactSetPointCountGlobal(c) / 4));
     for (PetscInt i = 0; i < ndirty; i++) {
       PetscScalar *d = &delta[144 * i], *D = &rom->De[12 * n * dirty[i]];
       PetscCallBLAS("BLASgemm", BLASgemm_("N", "N", &b12, &bn, &b12, &one, d, &b12, D, &b12, &zero, T, &b12));
@@ -194,7 +195,7 @@ PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc)
     PetscCall(BoltExactSumEnd(rom->sum, rom->comm, packed));
     PetscCall(ROMAddPackedToKcr(rom, packed));
   }
-  rom->KcrVersion = s->version;
+  rom->KcrVersion = BoltContactStateVersion(s);
   rom->KcrValid   = PETSC_TRUE;
   *Kc             = rom->Kcr;
   PetscFunctionReturn(0);

@@ -83,7 +83,7 @@ static PetscErrorCode ROMReferenceMake(BoltROM *rom, BoltOperator *op, BoltDual 
 {
   BoltROMUpdate  *u   = rom->update;
   ROMReference   *ref = &u->ref[r];
-  const PetscInt  ne  = rom->contact->nelem;
+  const PetscInt  ne  = BoltContactSetElementCount(rom->contact);
 
   PetscFunctionBeginUser;
   if (!ref->Ke) { /* made when first needed: a scene whose set holds uses one */
@@ -91,7 +91,7 @@ static PetscErrorCode ROMReferenceMake(BoltROM *rom, BoltOperator *op, BoltDual 
     PetscCall(PetscMalloc3(3 * rom->n * u->alloc, &ref->U, 3 * rom->n * u->alloc, &ref->Z, 9 * u->alloc * u->alloc, &ref->G));
   }
   for (PetscInt e = 0; e < ne; e++) {
-    if (u->devRun[e]) BoltOperatorState(op)->dirty[e] = PETSC_TRUE;
+    if (u->devRun[e]) BoltContactStateDirty(BoltOperatorState(op))[e] = PETSC_TRUE;
     u->devRun[e] = PETSC_FALSE;
   }
   rom->KcrValid = PETSC_FALSE; /* its version may have been taken while the flags were held here */
@@ -175,6 +175,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   BoltROMUpdate  *u   = rom->update;
   ROMReference   *ref = &u->ref[r];
   BoltContactSet *c   = rom->contact;
+  const PetscInt  ne = BoltContactSetElementCount(c);
   const PetscInt  n = rom->n, recLen = 3 + 36, LD = 3 * u->alloc;
   PetscInt        nsend = 0, nrec = 0, total = 0, nnew = 0, m, mine;
 
@@ -182,12 +183,12 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   *done = PETSC_FALSE;
   /* a record per differing slot: name, pool slot (-1: new), node pair (-1: both nodes clamped),
      its three rows of the difference */
-  for (PetscInt e = 0; e < c->nelem; e++)
+  for (PetscInt e = 0; e < ne; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++)
       if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) nsend += recLen;
   PetscCall(BoltGrowReal(&u->send, &u->sendAlloc, nsend + 1));
   nsend = 0;
-  for (PetscInt e = 0; e < c->nelem; e++)
+  for (PetscInt e = 0; e < ne; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
       const PetscReal *cur = &u->Kcur[144 * e], *ke = &ref->Ke[144 * e];
       PetscReal       *r0  = &u->send[nsend];
@@ -239,7 +240,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
       for (PetscInt i = 0; i < mo; i++) ref->G[j + LD * i] = ref->G[i + LD * j];
   }
   /* the owners note their new slots' places (their records, in the order they were sent) */
-  for (PetscInt e = 0, pos = mine; e < c->nelem; e++)
+  for (PetscInt e = 0, pos = mine; e < ne; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
       if (!ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) continue;
       if (ref->slotOf[4 * e + a] < 0) ref->slotOf[4 * e + a] = (PetscInt)u->recv[pos + 1];
@@ -300,6 +301,7 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
   BoltROMUpdate    *u   = rom->update;
   BoltContactSet   *c   = rom->contact;
   BoltContactState *s   = BoltOperatorState(op);
+  PetscBool        *stale = BoltContactStateDirty(s); /* elements whose block changed */
   PetscInt          slots[ROM_REFERENCES], order[ROM_REFERENCES], nvalid = 0;
   PetscReal         Knew[576];
   PetscLogDouble    t0, t1;
@@ -319,10 +321,10 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
     }
   }
   /* the changed elements' blocks, and whom they differ from */
-  for (PetscInt e = 0; e < c->nelem; e++) {
+  for (PetscInt e = 0, ne = BoltContactSetElementCount(c); e < ne; e++) {
     PetscReal *cur = &u->Kcur[144 * e];
-    if (!s->dirty[e]) continue;
-    s->dirty[e] = PETSC_FALSE;
+    if (!stale[e]) continue;
+    stale[e] = PETSC_FALSE;
     PetscCall(BoltContactStateElementStiffness(s, e, Knew));
     for (PetscInt a = 0; a < 12; a++)
       for (PetscInt b = 0; b < 12; b++) cur[12 * a + b] = Knew[24 * a + b];
@@ -341,7 +343,7 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
     ROMReference *ref = &u->ref[r];
     slots[r]          = 0;
     if (!ref->valid) continue;
-    for (PetscInt e = 0; e < c->nelem; e++)
+    for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++)
       for (PetscInt a = 0; a < 4 && ref->dev[e]; a++)
         if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) slots[r]++;
   }
@@ -437,7 +439,7 @@ void BoltROMUpdateSummed(BoltROMUpdate *u, BoltROM *rom, PetscInt e)
 PetscErrorCode BoltROMUpdateCreate(BoltROM *rom, BoltOperator *op, PetscInt maxRank)
 {
   BoltROMUpdate *u;
-  const PetscInt n = rom->n, ne = rom->contact->nelem;
+  const PetscInt n = rom->n, ne = BoltContactSetElementCount(rom->contact);
 
   PetscFunctionBeginUser;
   PetscCall(BoltROMUpdateDestroy(&rom->update));

@@ -28,7 +28,7 @@ static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBas
     PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
     PetscCall(VecDuplicate(q, &out[k]));
     PetscCall(VecWAXPY(out[k], -1.0, qBase, q));
-    PetscCall(PetscPrintf(BoltOperatorComm(op), "ROM: %s Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", what, k + 1, nout, nin, BoltOperatorState(op)->nactive));
+    PetscCall(PetscPrintf(BoltOperatorComm(op), "ROM: %s Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", what, k + 1, nout, nin, BoltContactStateActiveCount(BoltOperatorState(op))));
   }
   PetscFunctionReturn(0);
 }
@@ -37,8 +37,8 @@ static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBas
    pressure, zero without tangential traction); with tangent, also the unit direction of t_T. */
 static PetscReal BoltConeFraction(const BoltContactSet *c, PetscInt gp, const PetscReal t[3], PetscReal tangent[3])
 {
-  const PetscReal *n  = &c->gpNormal[3 * gp];
-  const PetscReal  tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], bound = c->friction[BoltContactSetElementPair(c, gp / 4)] * PetscMax(-tn, 0.0);
+  const PetscReal *n  = &BoltContactSetNormals(c)[3 * gp];
+  const PetscReal  tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], bound = BoltContactSetFriction(c, BoltContactSetElementPair(c, gp / 4)) * PetscMax(-tn, 0.0);
   PetscReal        tt = 0;
 
   for (PetscInt k = 0; k < 3; k++) tt += PetscSqr(t[k] - tn * n[k]);
@@ -55,10 +55,10 @@ static PetscReal BoltConeFraction(const BoltContactSet *c, PetscInt gp, const Pe
    300 N, without them the ROM dissipated half of the FOM's energy). */
 static void BoltMarkBeyondCone(BoltContactState *s, PetscBool mark[])
 {
-  BoltContactSet *c = s->set;
+  BoltContactSet *c = BoltContactStateSet(s);
 
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
-    if (s->active[gp] && BoltConeFraction(c, gp, &s->lambda[3 * gp], NULL) > 1) mark[gp] = PETSC_TRUE;
+  for (PetscInt gp = 0; gp < 4 * BoltContactSetElementCount(c); gp++)
+    if (BoltContactStateActive(s)[gp] && BoltConeFraction(c, gp, &BoltContactStateLambda(s)[3 * gp], NULL) > 1) mark[gp] = PETSC_TRUE;
 }
 
 /* The FOM's preloaded state on the offline operator op (handed over, or solved as the FOM's
@@ -104,27 +104,27 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
   /* The preloaded state above is the FOM's, with its slip under friction. The basis's static
      shapes from here on are solved with closed pairs sticking (elastically): a load beyond the
      friction limit has no static equilibrium, and the shapes need none (friction acts online) */
-  s->stickOnly = PETSC_TRUE;
+  PetscCall(BoltContactStateSetStickOnly(s, PETSC_TRUE));
   PetscCall(VecDuplicate(q, &*start));
   PetscCall(VecCopy(q, *start));
   PetscCall(VecDuplicate(BoltOperatorPreloadVec(op), preload));
   PetscCall(VecCopy(BoltOperatorPreloadVec(op), *preload));
-  PetscCall(PetscMalloc4(12 * c->nelem + 1, &rom->lambda0, 12 * c->nelem + 1, &rom->gap0, 4 * c->nelem + 1, &rom->active0, 4 * c->nelem + 1, &rom->released0));
-  PetscCall(BoltContactSetScatter(c, s->work, *start));
+  PetscCall(PetscMalloc4(12 * BoltContactSetElementCount(c) + 1, &rom->lambda0, 12 * BoltContactSetElementCount(c) + 1, &rom->gap0, 4 * BoltContactSetElementCount(c) + 1, &rom->active0, 4 * BoltContactSetElementCount(c) + 1, &rom->released0));
+  PetscCall(BoltContactSetScatter(c, BoltContactStateWork(s), *start));
   PetscCall(BoltContactStateGaps(s));
-  for (PetscInt k = 0; k < 12 * c->nelem; k++) {
-    rom->lambda0[k] = s->lambda[k] / F;
-    rom->gap0[k]    = (s->gap[k] + s->anchor[k]) / F; /* raw: the ROM's frozen multipliers hold any anchor */
+  for (PetscInt k = 0; k < 12 * BoltContactSetElementCount(c); k++) {
+    rom->lambda0[k] = BoltContactStateLambda(s)[k] / F;
+    rom->gap0[k]    = (BoltContactStateGap(s)[k] + BoltContactStateAnchor(s)[k]) / F; /* raw: the ROM's frozen multipliers hold any anchor */
   }
-  PetscCall(PetscArraycpy(rom->active0, s->active, 4 * c->nelem));
-  PetscCall(PetscArraycpy(rom->released0, s->released, 4 * c->nelem));
+  PetscCall(PetscArraycpy(rom->active0, BoltContactStateActive(s), 4 * BoltContactSetElementCount(c)));
+  PetscCall(PetscArraycpy(rom->released0, BoltContactStateReleased(s), 4 * BoltContactSetElementCount(c)));
   /* The solves below end with the active gaps closed, and the multipliers that close them do not
      depend on the penalty, nor does the active-set test (multipliers against the band). A stiffer
      penalty clusters the multiplier CG's operator B (K + eps B'B)^-1 B' near 1/eps, so the CG
      needs far fewer iterations on fine meshes. The preload itself
      stays the FOM's; this operator's state is its own, so the FOM's penalties are not touched. */
   PetscCall(BoltContactStateSetPenaltyScale(s, staticPenaltyScale, 1.0)); /* the band as it is */
-  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (PetscInt)outer, (PetscInt)inner, s->nactive, c->ngpGlobal));
+  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (PetscInt)outer, (PetscInt)inner, BoltContactStateActiveCount(s), BoltContactSetPointCountGlobal(c)));
   PetscFunctionReturn(0);
 }
 
@@ -139,7 +139,7 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
   Vec              *openK = NULL;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscCalloc1(4 * c->nelem + 1, &changed));
+  PetscCall(PetscCalloc1(4 * BoltContactSetElementCount(c) + 1, &changed));
   /* Friction: the pairs beyond the cone, sticking, under -/+ slipScale x the load. Sticking, the
      joint keeps the load where the slip zone would shed it onto its neighbours, so the zone
      beyond the cone at the swing's own size is narrower than the zone that slips (on a 300 N
@@ -156,15 +156,15 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
     PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
     PetscCall(VecAXPY(rhs, sign * openingScale / raise, BoltOperatorLoadVec(op)));
     PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
-    for (PetscInt k = 0; k < 4 * c->nelem; k++) changed[k] = (PetscBool)(changed[k] || s->active[k] != rom->active0[k]);
+    for (PetscInt k = 0; k < 4 * BoltContactSetElementCount(c); k++) changed[k] = (PetscBool)(changed[k] || BoltContactStateActive(s)[k] != rom->active0[k]);
     if (BoltContactStateHasFriction(s)) BoltMarkBeyondCone(s, changed);
   }
   PetscCall(BoltNodePairs(c, changed, &npairs, &pairs));
   PetscCall(PetscFree(rom->marked));
   rom->marked = changed; /* kept: online the other points may hold their preloaded state */
   rom->nOpeningPairs = npairs;
-  if (rom->slipScale > 0) PetscCall(PetscPrintf(rom->comm, "ROM: -/+ %g x the load change, or -/+ %g x the load makes slip, %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed under +)\n", (double)openingScale, (double)rom->slipScale, npairs, s->nactive));
-  else PetscCall(PetscPrintf(rom->comm, "ROM: -/+ %g x the load change %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed under +)\n", (double)openingScale, npairs, s->nactive));
+  if (rom->slipScale > 0) PetscCall(PetscPrintf(rom->comm, "ROM: -/+ %g x the load change, or -/+ %g x the load makes slip, %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed under +)\n", (double)openingScale, (double)rom->slipScale, npairs, BoltContactStateActiveCount(s)));
+  else PetscCall(PetscPrintf(rom->comm, "ROM: -/+ %g x the load change %" PetscInt_FMT " node pairs (%" PetscInt_FMT " points closed under +)\n", (double)openingScale, npairs, BoltContactStateActiveCount(s)));
   if (nOpenKrylov > 0 && npairs > 0) { /* the opened joint's low-frequency shapes, its active set kept (none when no pair changes: it is the preloaded joint) */
     Vec base, q2, work;
     PetscCall(VecDuplicate(q, &base));
@@ -194,16 +194,16 @@ static PetscErrorCode ROMConePairs(BoltContactSet *c, BoltROM *rom, PetscInt *nC
   PetscInt   ncone = 0, nconeGlobal;
   PetscBool *cone;
   PetscReal *dir; /* per point: the tangential traction's direction, then the normal */
-  PetscCall(PetscCalloc1(4 * c->nelem + 1, &cone));
-  PetscCall(PetscCalloc1(24 * c->nelem + 1, &dir));
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) {
+  PetscCall(PetscCalloc1(4 * BoltContactSetElementCount(c) + 1, &cone));
+  PetscCall(PetscCalloc1(24 * BoltContactSetElementCount(c) + 1, &dir));
+  for (PetscInt gp = 0; gp < 4 * BoltContactSetElementCount(c); gp++) {
     PetscReal fraction;
     if (!rom->active0[gp]) continue;
     fraction = BoltConeFraction(c, gp, &rom->lambda0[3 * gp], &dir[6 * gp]);
     if (fraction > 0 && (rom->released0[gp] || fraction >= rom->coneShapes)) {
       ncone++;
       cone[gp] = PETSC_TRUE;
-      for (PetscInt k = 0; k < 3; k++) dir[6 * gp + 3 + k] = c->gpNormal[3 * gp + k];
+      for (PetscInt k = 0; k < 3; k++) dir[6 * gp + 3 + k] = BoltContactSetNormals(c)[3 * gp + k];
     } else
       for (PetscInt k = 0; k < 3; k++) dir[6 * gp + k] = 0;
   }
@@ -215,7 +215,7 @@ static PetscErrorCode ROMConePairs(BoltContactSet *c, BoltROM *rom, PetscInt *nC
     rom->marked = cone;
     cone        = NULL;
   } else
-    for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) rom->marked[gp] = (PetscBool)(rom->marked[gp] || cone[gp]);
+    for (PetscInt gp = 0; gp < 4 * BoltContactSetElementCount(c); gp++) rom->marked[gp] = (PetscBool)(rom->marked[gp] || cone[gp]);
   PetscCall(PetscFree(cone));
   rom->nConePairs = *nConePairs;
   PetscCall(PetscPrintf(rom->comm, "ROM: %" PetscInt_FMT " points at %g of the cone or beyond in the preloaded state, on %" PetscInt_FMT " node pairs\n", nconeGlobal, (double)rom->coneShapes, *nConePairs));

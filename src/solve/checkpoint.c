@@ -24,7 +24,7 @@ static PetscErrorCode BoltCheckpointFingerprint(BoltNewmark *nm, char fp[], size
 
   PetscFunctionBeginUser;
   PetscCall(VecGetSize(nm->q, &n));
-  PetscCall(PetscSNPrintf(fp, len, "boltrom checkpoint 3; model %s; mesh %s; unknowns %" PetscInt_FMT "; contact points %" PetscInt_FMT "; dt %.17g; beta %.17g; gamma %.17g; load history %d, %.17g Hz; contact law %s", op->name, op->contact->mesh->filename, n, op->contact->ngpGlobal, (double)nm->dt, (double)nm->beta, (double)nm->gamma, (int)nm->history, (double)nm->frequency, op->state->augment ? "augmented" : "penalty"));
+  PetscCall(PetscSNPrintf(fp, len, "boltrom checkpoint 3; model %s; mesh %s; unknowns %" PetscInt_FMT "; contact points %" PetscInt_FMT "; dt %.17g; beta %.17g; gamma %.17g; load history %d, %.17g Hz; contact law %s", op->name, BoltMeshFileName(BoltContactSetMesh(op->contact)), n, BoltContactSetPointCountGlobal(op->contact), (double)nm->dt, (double)nm->beta, (double)nm->gamma, (int)nm->history, (double)nm->frequency, BoltContactStateAugmented(op->state) ? "augmented" : "penalty"));
   PetscFunctionReturn(0);
 }
 
@@ -83,7 +83,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   BoltContactSet *c    = op->contact;
   MPI_Comm        comm = op->comm;
   PetscMPIInt     rank;
-  PetscInt        nhist = BOLT_CKPT_NGLOBALS + (5 + BOLT_LEDGER + BOLT_PAIR_FORCE * c->npairs) * (nm->step + 1) + nm->nsnap, k = 0, ne = c->nelem;
+  PetscInt        nhist = BOLT_CKPT_NGLOBALS + (5 + BOLT_LEDGER + BOLT_PAIR_FORCE * BoltContactSetPairCount(c)) * (nm->step + 1) + nm->nsnap, k = 0, ne = BoltContactSetElementCount(c);
   PetscScalar    *buf;
   PetscViewer     v;
   char            file[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN + 8], fp[PETSC_MAX_PATH_LEN + 512], **names;
@@ -129,7 +129,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
     for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->dissipated[i];
     for (PetscInt r = 0; r < BOLT_LEDGER; r++)
       for (PetscInt i = 0; i <= nm->step; i++) buf[k++] = nm->ledger[r * (nm->nsteps + 1) + i];
-    for (PetscInt i = 0; i < BOLT_PAIR_FORCE * c->npairs * (nm->step + 1); i++) buf[k++] = nm->pairForce[i];
+    for (PetscInt i = 0; i < BOLT_PAIR_FORCE * BoltContactSetPairCount(c) * (nm->step + 1); i++) buf[k++] = nm->pairForce[i];
     for (PetscInt i = 0; i < nm->nsnap; i++) buf[k++] = nm->snapTime[i];
     PetscCall(BoltHDF5WriteValues(v, comm, "history", nhist, 1, buf, PETSC_TRUE));
   }
@@ -150,6 +150,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
 {
   BoltOperator   *op   = nm->op;
   BoltContactSet *c    = op->contact;
+  const PetscInt  ne = BoltContactSetElementCount(c);
   MPI_Comm        comm = op->comm;
   PetscInt        step, nsnap, k = 0, n, missing = 0;
   PetscReal      *h, *x;
@@ -192,7 +193,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   PetscCall(PetscViewerHDF5PushGroup(v, "/checkpoint"));
   PetscCall(BoltReadAll(v, comm, "history", &n, &h));
   nsnap = (PetscInt)h[1];
-  PetscCheck(n == BOLT_CKPT_NGLOBALS + (5 + BOLT_LEDGER + BOLT_PAIR_FORCE * c->npairs) * (step + 1) + nsnap && (PetscInt)h[0] == step, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (its history does not match its step)", file);
+  PetscCheck(n == BOLT_CKPT_NGLOBALS + (5 + BOLT_LEDGER + BOLT_PAIR_FORCE * BoltContactSetPairCount(c)) * (step + 1) + nsnap && (PetscInt)h[0] == step, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (its history does not match its step)", file);
   PetscCheck(nsnap == 0 || (nm->snapshotEvery > 0 && nsnap <= nm->nsteps / nm->snapshotEvery + 1), comm, PETSC_ERR_USER_INPUT, "-restart: the checkpoint %s holds snapshots: restart with the same -snapshot_every", file);
 
   /* the model's vectors */
@@ -213,7 +214,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
     PetscCall(PetscFree(kall));
     PetscCall(BoltReadAll(v, comm, "contact_state", &n, &x));
     PetscCheck(n == BOLT_CKPT_CONTACT * BoltKeyIndexSize(ix), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (contact state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements)", file, n, BoltKeyIndexSize(ix));
-    for (PetscInt e = 0; e < c->nelem; e++) {
+    for (PetscInt e = 0; e < ne; e++) {
       PetscInt         row;
       const PetscReal *s;
       PetscCall(BoltKeyIndexFind(ix, BoltContactSetElementKey(c, e), &row));
@@ -231,12 +232,12 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
       PetscCheck(has, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s holds snapshots but not their contact states (an older boltrom wrote it): run again from the start", file);
       PetscCall(BoltReadAll(v, comm, "snapshot_contact_state", &n, &x));
       PetscCheck(n == 4 * nsnap * BoltKeyIndexSize(ix), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged (snapshot contact states of %" PetscInt_FMT " values for %" PetscInt_FMT " elements)", file, n, BoltKeyIndexSize(ix));
-      for (PetscInt e = 0; e < c->nelem; e++) {
+      for (PetscInt e = 0; e < ne; e++) {
         PetscInt row;
         PetscCall(BoltKeyIndexFind(ix, BoltContactSetElementKey(c, e), &row));
         if (row < 0) continue; /* counted as missing above */
         for (PetscInt i = 0; i < nsnap; i++)
-          for (PetscInt q = 0; q < 4; q++) nm->snapCodes[4 * c->nelem * i + 4 * e + q] = (unsigned char)x[(row * nsnap + i) * 4 + q];
+          for (PetscInt q = 0; q < 4; q++) nm->snapCodes[4 * ne * i + 4 * e + q] = (unsigned char)x[(row * nsnap + i) * 4 + q];
       }
       PetscCall(PetscFree(x));
     }
@@ -275,7 +276,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   for (PetscInt i = 0; i <= step; i++) nm->dissipated[i] = h[k++];
   for (PetscInt r = 0; r < BOLT_LEDGER; r++)
     for (PetscInt i = 0; i <= step; i++) nm->ledger[r * (nm->nsteps + 1) + i] = h[k++];
-  for (PetscInt i = 0; i < BOLT_PAIR_FORCE * c->npairs * (step + 1); i++) nm->pairForce[i] = h[k++];
+  for (PetscInt i = 0; i < BOLT_PAIR_FORCE * BoltContactSetPairCount(c) * (step + 1); i++) nm->pairForce[i] = h[k++];
   for (PetscInt i = 0; i < nsnap; i++) nm->snapTime[i] = h[k++];
   PetscCall(PetscFree(h));
   /* the contact tractions' work and the friction's dissipation so far go on from the histories'

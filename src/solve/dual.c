@@ -69,16 +69,16 @@ PetscErrorCode BoltDualSetFromOptions(BoltDual *d)
 PetscErrorCode BoltDualSetUp(BoltDual *d)
 {
   BoltOperator *op = d->op;
-  PetscInt      ng = 12 * op->contact->nelem + 1;
+  PetscInt      ng = 12 * BoltContactSetElementCount(op->contact) + 1;
   Mat           Kc, Z;
 
   PetscFunctionBeginUser;
-  if (BoltContactStateIsComplementarity(op->state) && !d->tolPenetrationSet) d->tolPenetration = op->contact->gapTolerance;
+  if (BoltContactStateIsComplementarity(op->state) && !d->tolPenetrationSet) d->tolPenetration = BoltContactSetGapTolerance(op->contact);
   PetscCall(MatCreateVecs(op->K, &d->Fc, NULL));
   PetscCall(VecDuplicate(d->Fc, &d->work));
   PetscCall(VecDuplicate(d->Fc, &d->qp));
   PetscCall(VecDuplicate(d->Fc, &d->FcLambda));
-  PetscCall(PetscMalloc4(ng, &d->cgR, ng, &d->cgP, ng, &d->cgAp, 4 * op->contact->nelem + 1, &d->tnOpen));
+  PetscCall(PetscMalloc4(ng, &d->cgR, ng, &d->cgP, ng, &d->cgAp, 4 * BoltContactSetElementCount(op->contact) + 1, &d->tnOpen));
   /* K_eff gets the union of the structural and the contact pattern once, so that it keeps one
      pattern and MUMPS repeats only the numeric factorisation */
   PetscCall(op->ops.contactStiffness(op, &Kc));
@@ -116,22 +116,25 @@ PetscErrorCode BoltDualSetEffective(BoltDual *d, PetscBool dynamic, PetscReal ma
 static PetscErrorCode BoltDualCalibrate(BoltDual *d, Vec rhs0, Vec q)
 {
   BoltContactState *s = d->op->state;
-  BoltContactSet   *c = s->set;
+  BoltContactSet   *c = BoltContactStateSet(s);
   PetscReal         force[BOLTROM_MAX_PAIRS], fmax = 0, scale;
 
   PetscFunctionBeginUser;
   PetscCall(BoltContactStateNormalForcePerPair(s, force));
-  for (PetscInt p = 0; p < c->npairs; p++) fmax = PetscMax(fmax, PetscAbsReal(force[p]));
+  for (PetscInt p = 0; p < BoltContactSetPairCount(c); p++) fmax = PetscMax(fmax, PetscAbsReal(force[p]));
   PetscCheck(fmax > 0, d->op->comm, PETSC_ERR_USER_INPUT, "The preload transmits no contact force: check the preload groups and the bolt axis (-preload_axis)");
   scale = d->preloadTarget / fmax;
   d->preloadScale *= scale;
   PetscCall(VecScale(q, scale));
   PetscCall(VecScale(d->op->preload, scale));
   if (rhs0 != d->op->preload) PetscCall(VecScale(rhs0, scale));
-  for (PetscInt k = 0; k < 12 * c->nelem; k++) {
-    s->lambda[k] *= scale;
-    s->gap[k] *= scale;
-    s->anchor[k] *= scale; /* the preload's problem is linear in its scale, positions included */
+  {
+    PetscReal *lambda = BoltContactStateLambda(s), *gap = BoltContactStateGap(s), *anchor = BoltContactStateAnchor(s);
+    for (PetscInt k = 0; k < 12 * BoltContactSetElementCount(c); k++) {
+      lambda[k] *= scale;
+      gap[k] *= scale;
+      anchor[k] *= scale; /* the preload's problem is linear in its scale, positions included */
+    }
   }
   BoltContactStateChanged(s);
   PetscFunctionReturn(0);
@@ -159,9 +162,9 @@ static PetscErrorCode BoltDualCloseOnly(BoltDual *d, PetscBool cycling, PetscInt
 
   PetscFunctionBeginUser;
   if (cycling) PetscCall(BoltContactStateCloseCycle(s, &nclosed));
-  s->closeOnly = PETSC_TRUE;
+  PetscCall(BoltContactStateSetCloseOnly(s, PETSC_TRUE));
   d->cycles++;
-  if (d->monitor > 0 || d->cycles <= 10) PetscCall(PetscPrintf(d->op->comm, "%s step %" PetscInt_FMT ", t = %g s: the active set %s after %" PetscInt_FMT " outer iterations; from now on in this step points only close (%" PetscInt_FMT " points re-closed, %" PetscInt_FMT " active)%s\n", d->op->name, d->step, (double)d->time, cycling ? "cycles between two sets" : "has not settled", sets, nclosed, s->nactive, d->cycles == 10 ? "; further cycles are counted, not printed" : ""));
+  if (d->monitor > 0 || d->cycles <= 10) PetscCall(PetscPrintf(d->op->comm, "%s step %" PetscInt_FMT ", t = %g s: the active set %s after %" PetscInt_FMT " outer iterations; from now on in this step points only close (%" PetscInt_FMT " points re-closed, %" PetscInt_FMT " active)%s\n", d->op->name, d->step, (double)d->time, cycling ? "cycles between two sets" : "has not settled", sets, nclosed, BoltContactStateActiveCount(s), d->cycles == 10 ? "; further cycles are counted, not printed" : ""));
   PetscFunctionReturn(0);
 }
 
@@ -183,7 +186,7 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
   PetscReal         frictionBest = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
-  s->closeOnly = PETSC_FALSE;
+  PetscCall(BoltContactStateSetCloseOnly(s, PETSC_FALSE));
   if (d->extrapolate && d->dynamic) BoltContactStateExtrapolate(s);
   for (;;) {
     PetscInt  nchanged;
@@ -193,8 +196,8 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     if (refactor) PetscCall(BoltDualFactor(d));
     refactor = PETSC_FALSE;
     PetscCall(BoltDualSolveWithForces(d, rhs0, BoltContactStateForceMultipliers(s), q));
-    PetscCall(BoltDualGapsOf(d, q, s->gap));
-    BoltContactStateAnchorGaps(s, s->gap);
+    PetscCall(BoltDualGapsOf(d, q, BoltContactStateGap(s)));
+    BoltContactStateAnchorGaps(s, BoltContactStateGap(s));
     solves++;
     PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
     PetscCall(BoltContactStateAugment(s, &rel, &viol));
@@ -206,33 +209,33 @@ static PetscErrorCode BoltDualSolveActiveSet(BoltDual *d, Vec rhs0, Vec q, Petsc
     if (d->keepActiveSet && !d->dynamic) {
       cycling = PETSC_FALSE;
       nchanged = 0;
-      if (BoltContactStateHasFriction(s) && !s->stickOnly) { /* the set kept; its closed pairs still stick or slip (a ROM's preload, as the FOM's) */
-        s->holdContact = PETSC_TRUE;
+      if (BoltContactStateHasFriction(s) && !BoltContactStateStickOnly(s)) { /* the set kept; its closed pairs still stick or slip (a ROM's preload, as the FOM's) */
+        PetscCall(BoltContactStateSetHoldContact(s, PETSC_TRUE));
         PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
-        s->holdContact = PETSC_FALSE;
+        PetscCall(BoltContactStateSetHoldContact(s, PETSC_FALSE));
       }
     } else PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, sets, solves, nchanged, cycling));
-    if (!nchanged && viol <= d->tolPenetration && (!BoltContactStateHasFriction(s) || s->frictionChange <= d->tolFriction)) break;
+    if (!nchanged && viol <= d->tolPenetration && (!BoltContactStateHasFriction(s) || BoltContactStateFrictionChange(s) <= d->tolFriction)) break;
     /* friction at its rounding floor: the set holds, and the slipping tractions' residual, within
        ten times the tolerance, has not halved in five solves (a reduced model's gaps, differences
        of basis rows, are that much less precise than the full model's) */
     if (BoltContactStateHasFriction(s) && !nchanged && viol <= d->tolPenetration) {
-      if (s->frictionChange < 0.5 * frictionBest) {
-        frictionBest = s->frictionChange;
+      if (BoltContactStateFrictionChange(s) < 0.5 * frictionBest) {
+        frictionBest = BoltContactStateFrictionChange(s);
         frictionStall = 0;
-      } else if (++frictionStall >= 5 && s->frictionChange <= 10 * d->tolFriction) break;
+      } else if (++frictionStall >= 5 && BoltContactStateFrictionChange(s) <= 10 * d->tolFriction) break;
     } else frictionBest = PETSC_MAX_REAL, frictionStall = 0;
     if (nchanged) {
       sets++;
       refactor = PETSC_TRUE;
-      if (d->closeCycles && !s->closeOnly && (cycling || 2 * sets >= d->maxOuter)) PetscCall(BoltDualCloseOnly(d, cycling, sets));
+      if (d->closeCycles && !BoltContactStateCloseOnly(s) && (cycling || 2 * sets >= d->maxOuter)) PetscCall(BoltDualCloseOnly(d, cycling, sets));
     }
     if ((nchanged && (sets > d->maxOuter || (cycling && !d->closeCycles))) || solves >= d->maxInner) {
       d->failures++;
       char friction[160] = "";
 
-      if (BoltContactStateHasFriction(s)) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", and the slipping pairs' tractions move by %.3e of the largest pressure (tolerance %.1e: -contact_tol_friction)", (double)s->frictionChange, (double)d->tolFriction));
+      if (BoltContactStateHasFriction(s)) PetscCall(PetscSNPrintf(friction, sizeof(friction), ", and the slipping pairs' tractions move by %.3e of the largest pressure (tolerance %.1e: -contact_tol_friction)", (double)BoltContactStateFrictionChange(s), (double)d->tolFriction));
       PetscCheck(d->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: the contact loop did not converge at step %" PetscInt_FMT ", t = %g s: after %" PetscInt_FMT " solves and %" PetscInt_FMT " active sets, %" PetscInt_FMT " pairs changed and a closed pair is off its contact by %.3e m (tolerance %.1e)%s; raise -contact_max_outer / -contact_max_inner or add -contact_continue to go on with a warning", op->name, d->step, (double)d->time, solves, sets, nchanged, (double)viol, (double)d->tolPenetration, friction);
       PetscCall(PetscPrintf(comm, "WARNING %s: contact loop not converged at step %" PetscInt_FMT ", t = %g s; going on\n", op->name, d->step, (double)d->time));
       if (refactor) PetscCall(BoltDualFactor(d)); /* the next step starts consistent */
@@ -266,21 +269,21 @@ PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, P
     PetscCall(BoltDualSolveActiveSet(d, rhs0, q, refactor, nouter, ninner));
     PetscFunctionReturn(0);
   }
-  s->closeOnly = PETSC_FALSE;
+  PetscCall(BoltContactStateSetCloseOnly(s, PETSC_FALSE));
   for (outer = 1;; outer++) {
     PetscInt  nchanged;
     PetscBool cycling;
 
     if (refactor) PetscCall(BoltDualFactor(d));
     /* under the penalty law the multipliers are not unknowns (zero, or a ROM's frozen preload) */
-    if (!d->warmStart && s->augment) {
-      PetscCall(PetscArrayzero(s->lambda, 12 * op->contact->nelem));
+    if (!d->warmStart && BoltContactStateAugmented(s)) {
+      PetscCall(PetscArrayzero(BoltContactStateLambda(s), 12 * BoltContactSetElementCount(op->contact)));
       BoltContactStateChanged(s);
     }
     PetscCall((*d->inner)(d, rhs0, q, &inner));
     innerTotal += inner;
     if (d->calibrating) PetscCall(BoltDualCalibrate(d, rhs0, q));
-    if (d->monitor > 0 && s->augment) PetscCall(BoltContactMonitorTension(d));
+    if (d->monitor > 0 && BoltContactStateAugmented(s)) PetscCall(BoltContactMonitorTension(d));
     if (d->keepActiveSet && !d->dynamic) break;
     PetscCall(BoltDualUpdateActive(d, &nchanged, &cycling));
     if (d->monitor > 0) PetscCall(BoltContactMonitorOuter(d, outer, inner, nchanged, cycling));
@@ -290,14 +293,14 @@ PetscErrorCode BoltDualSolve(BoltDual *d, Vec rhs0, Vec q, PetscBool refactor, P
        in half the allowed iterations, points may only close for the rest of the step (after a
        two-set cycle its toggling points are closed first). The set can then only grow, so the
        loop ends; closed is the side that lets nothing penetrate. */
-    if (d->closeCycles && !s->closeOnly && (cycling || 2 * outer >= d->maxOuter)) {
+    if (d->closeCycles && !BoltContactStateCloseOnly(s) && (cycling || 2 * outer >= d->maxOuter)) {
       PetscCall(BoltDualCloseOnly(d, cycling, outer));
       continue;
     }
     if (cycling || outer >= d->maxOuter) {
       if (cycling) d->cycles++;
       d->failures++;
-      PetscCheck(d->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: the active set did not settle at step %" PetscInt_FMT ", t = %g s: %s after %" PetscInt_FMT " outer iterations (%" PetscInt_FMT " points changed, %" PetscInt_FMT " active); raise -contact_max_outer or add -contact_continue to go on with a warning", op->name, d->step, (double)d->time, cycling ? "it cycles between two sets" : "limit reached", outer, nchanged, s->nactive);
+      PetscCheck(d->continueOnFailure, comm, PETSC_ERR_NOT_CONVERGED, "%s: the active set did not settle at step %" PetscInt_FMT ", t = %g s: %s after %" PetscInt_FMT " outer iterations (%" PetscInt_FMT " points changed, %" PetscInt_FMT " active); raise -contact_max_outer or add -contact_continue to go on with a warning", op->name, d->step, (double)d->time, cycling ? "it cycles between two sets" : "limit reached", outer, nchanged, BoltContactStateActiveCount(s));
       PetscCall(PetscPrintf(comm, "WARNING %s: active set %s at step %" PetscInt_FMT ", t = %g s; going on\n", op->name, cycling ? "cycles between two sets" : "not settled", d->step, (double)d->time));
       /* the last solve used the previous set: refactor so the next step starts consistent */
       PetscCall(BoltDualFactor(d));

@@ -26,15 +26,15 @@ static PetscErrorCode BoltDualInnerUzawa(BoltDual *d, Vec rhs0, Vec q, PetscInt 
   PetscFunctionBeginUser;
   for (inner = 1;; inner++) {
     PetscCall(BoltDualSolveWithForces(d, rhs0, BoltContactStateForceMultipliers(s), q));
-    PetscCall(BoltDualGapsOf(d, q, s->gap));
-    BoltContactStateAnchorGaps(s, s->gap);
+    PetscCall(BoltDualGapsOf(d, q, BoltContactStateGap(s)));
+    BoltContactStateAnchorGaps(s, BoltContactStateGap(s));
     PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
     PetscCall(BoltContactStateAugment(s, &rel, &pen));
     PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
     d->lastChange      = rel;
     d->lastPenetration = pen;
     PetscCheck(!PetscIsInfOrNanReal(rel) && !PetscIsInfOrNanReal(pen), d->op->comm, PETSC_ERR_FP, "%s: NaN in the contact loop at step %" PetscInt_FMT ", t = %g s", d->op->name, d->step, (double)d->time);
-    if (!s->augment) break;
+    if (!BoltContactStateAugmented(s)) break;
     if (rel <= d->tolLambda && (pen <= d->tolPenetration || !d->op->exactConstraints)) break;
     if (inner >= d->maxInner) {
       PetscCall(BoltDualInnerFailure(d, inner, rel, pen));
@@ -53,19 +53,21 @@ static PetscErrorCode BoltDualInnerUzawa(BoltDual *d, Vec rhs0, Vec q, PetscInt 
 static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ninner)
 {
   BoltContactState *s  = d->op->state;
-  BoltContactSet   *c  = s->set;
-  PetscInt          ng = 12 * c->nelem, inner;
+  BoltContactSet   *c  = BoltContactStateSet(s);
+  PetscInt          ng = 12 * BoltContactSetElementCount(c), inner;
+  PetscReal        *lambda = BoltContactStateLambda(s);
+  const PetscBool  *active = BoltContactStateActive(s);
   PetscReal        *r = d->cgR, *p = d->cgP, *Ap = d->cgAp, rr, rr0, pAp, alpha, rel = 0, pen = 0, lnorm, pnorm;
 
   PetscFunctionBeginUser;
-  if (!s->augment) {
+  if (!BoltContactStateAugmented(s)) {
     PetscCall(BoltDualInnerUzawa(d, rhs0, q, ninner));
     PetscFunctionReturn(0);
   }
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++)
-    if (!s->active[gp]) s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
+  for (PetscInt gp = 0; gp < ng / 3; gp++)
+    if (!active[gp]) lambda[3 * gp] = lambda[3 * gp + 1] = lambda[3 * gp + 2] = 0;
   BoltContactStateChanged(s);
-  PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, q));
+  PetscCall(BoltDualSolveWithForces(d, rhs0, lambda, q));
   PetscCall(VecCopy(d->Fc, d->FcLambda)); /* the contact forces of lambda, kept up to date */
   PetscCall(BoltDualGapsOf(d, q, r));
   PetscCall(BoltContactStatePenetration(s, r, &pen));
@@ -89,7 +91,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
     if (pAp <= 0) break; /* the remaining gaps are invisible to the multipliers */
     alpha = rr / pAp;
     for (PetscInt k = 0; k < ng; k++) {
-      s->lambda[k] += alpha * p[k];
+      lambda[k] += alpha * p[k];
       r[k] -= alpha * Ap[k];
     }
     BoltContactStateChanged(s);
@@ -119,7 +121,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
   }
   /* the true gaps of the final displacement at every point: r holds them only at active points
      (zeroed elsewhere), and an inactive point must be able to close again */
-  PetscCall(BoltDualGapsOf(d, q, s->gap));
+  PetscCall(BoltDualGapsOf(d, q, BoltContactStateGap(s)));
   *ninner = inner;
   PetscFunctionReturn(0);
 }
@@ -129,7 +131,7 @@ static PetscErrorCode BoltDualInnerCG(BoltDual *d, Vec rhs0, Vec q, PetscInt *ni
 static PetscErrorCode BoltDualMonitorCG(BoltDual *d, Vec rhs0, Vec q, PetscInt inner, PetscReal rel, PetscReal pen, PetscReal alpha, const PetscReal r[], PetscReal rr0, PetscReal work[])
 {
   BoltContactState *s  = d->op->state;
-  PetscInt          ng = 12 * s->set->nelem;
+  PetscInt          ng = 12 * BoltContactSetElementCount(BoltContactStateSet(s));
   PetscReal         rrN, trueRes = 0, drift = 0;
 
   PetscFunctionBeginUser;
@@ -139,7 +141,7 @@ static PetscErrorCode BoltDualMonitorCG(BoltDual *d, Vec rhs0, Vec q, PetscInt i
     Vec        qt;
     PetscCall(PetscMalloc1(ng + 1, &tg));
     PetscCall(VecDuplicate(q, &qt));
-    PetscCall(BoltDualSolveWithForces(d, rhs0, s->lambda, qt));
+    PetscCall(BoltDualSolveWithForces(d, rhs0, BoltContactStateLambda(s), qt));
     PetscCall(BoltDualGapsOf(d, qt, tg));
     PetscCall(VecDestroy(&qt));
     PetscCall(BoltContactStatePenetration(s, tg, &tt));

@@ -9,7 +9,8 @@
 PetscErrorCode BoltContactMonitorOuter(BoltDual *d, PetscInt outer, PetscInt inner, PetscInt nchanged, PetscBool cycling)
 {
   BoltContactState *s = d->op->state;
-  BoltContactSet   *c = s->set;
+  BoltContactSet   *c = BoltContactStateSet(s);
+  const PetscInt  ne = BoltContactSetElementCount(c);
   const PetscInt    P = BOLTROM_MAX_PAIRS;
   PetscInt          cnt[2 * BOLTROM_MAX_PAIRS];
   PetscReal         ctr[3 * BOLTROM_MAX_PAIRS], rmin[BOLTROM_MAX_PAIRS], rmax[2 * BOLTROM_MAX_PAIRS];
@@ -21,21 +22,21 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *d, PetscInt outer, PetscInt inn
   }
   for (PetscInt p = 0; p < P; p++) rmin[p] = PETSC_MAX_REAL;
   for (PetscInt p = 0; p < 3 * P; p++) ctr[p] = 0;
-  for (PetscInt e = 0; e < c->nelem; e++)
+  for (PetscInt e = 0; e < ne; e++)
     for (PetscInt q = 0; q < 4; q++)
       for (PetscInt a = 0; a < 4; a++)
-        for (PetscInt d = 0; d < 3; d++) ctr[3 * BoltContactSetElementPair(c, e) + d] += c->gpW[4 * e + q] * c->gpN[16 * e + 4 * q + a] * BoltContactSetElementCoordinates(c, e)[3 * a + d] / c->areaPerPair[BoltContactSetElementPair(c, e)];
+        for (PetscInt d = 0; d < 3; d++) ctr[3 * BoltContactSetElementPair(c, e) + d] += BoltContactSetWeights(c)[4 * e + q] * BoltContactSetShapeValues(c)[16 * e + 4 * q + a] * BoltContactSetElementCoordinates(c, e)[3 * a + d] / BoltContactSetPairArea(c, BoltContactSetElementPair(c, e));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ctr, 3 * P, MPIU_REAL, MPI_SUM, d->op->comm));
-  for (PetscInt e = 0; e < c->nelem; e++)
+  for (PetscInt e = 0; e < ne; e++)
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt  gp = 4 * e + q, p = BoltContactSetElementPair(c, e);
       PetscReal x[3] = {0, 0, 0}, r;
       for (PetscInt a = 0; a < 4; a++)
-        for (PetscInt d = 0; d < 3; d++) x[d] += c->gpN[16 * e + 4 * q + a] * BoltContactSetElementCoordinates(c, e)[3 * a + d];
+        for (PetscInt d = 0; d < 3; d++) x[d] += BoltContactSetShapeValues(c)[16 * e + 4 * q + a] * BoltContactSetElementCoordinates(c, e)[3 * a + d];
       r = PetscSqrtReal(PetscSqr(x[0] - ctr[3 * p]) + PetscSqr(x[1] - ctr[3 * p + 1]));
-      if (s->active[gp]) rmax[P + p] = PetscMax(rmax[P + p], r);
-      if (s->active[gp] == s->activeOld[gp]) continue;
-      cnt[2 * p + (s->active[gp] ? 1 : 0)]++;
+      if (BoltContactStateActive(s)[gp]) rmax[P + p] = PetscMax(rmax[P + p], r);
+      if (BoltContactStateActive(s)[gp] == BoltContactStateActiveOld(s)[gp]) continue;
+      cnt[2 * p + (BoltContactStateActive(s)[gp] ? 1 : 0)]++;
       rmin[p] = PetscMin(rmin[p], r);
       rmax[p] = PetscMax(rmax[p], r);
     }
@@ -43,10 +44,10 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *d, PetscInt outer, PetscInt inn
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rmin, P, MPIU_REAL, MPI_MIN, d->op->comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rmax, 2 * P, MPIU_REAL, MPI_MAX, d->op->comm));
   char fric[40] = "";
-  if (BoltContactStateHasFriction(s)) PetscCall(PetscSNPrintf(fric, sizeof(fric), " friction %.3e", (double)s->frictionChange));
-  PetscCall(PetscPrintf(d->op->comm, "  %s step %" PetscInt_FMT " outer %3" PetscInt_FMT ": inner %4" PetscInt_FMT " change %.3e pen %.3e%s | changed %" PetscInt_FMT " active %" PetscInt_FMT "%s |", d->op->name, d->step, outer, inner, (double)d->lastChange, (double)d->lastPenetration, fric, nchanged, s->nactive, cycling ? " CYCLING" : ""));
-  for (PetscInt p = 0; p < c->npairs; p++)
-    if (cnt[2 * p] || cnt[2 * p + 1]) PetscCall(PetscPrintf(d->op->comm, " %s -%" PetscInt_FMT " +%" PetscInt_FMT " at r %.2f..%.2f mm, active to %.2f mm;", c->pairName[p], cnt[2 * p], cnt[2 * p + 1], (double)(1e3 * rmin[p]), (double)(1e3 * rmax[p]), (double)(1e3 * rmax[P + p])));
+  if (BoltContactStateHasFriction(s)) PetscCall(PetscSNPrintf(fric, sizeof(fric), " friction %.3e", (double)BoltContactStateFrictionChange(s)));
+  PetscCall(PetscPrintf(d->op->comm, "  %s step %" PetscInt_FMT " outer %3" PetscInt_FMT ": inner %4" PetscInt_FMT " change %.3e pen %.3e%s | changed %" PetscInt_FMT " active %" PetscInt_FMT "%s |", d->op->name, d->step, outer, inner, (double)d->lastChange, (double)d->lastPenetration, fric, nchanged, BoltContactStateActiveCount(s), cycling ? " CYCLING" : ""));
+  for (PetscInt p = 0; p < BoltContactSetPairCount(c); p++)
+    if (cnt[2 * p] || cnt[2 * p + 1]) PetscCall(PetscPrintf(d->op->comm, " %s -%" PetscInt_FMT " +%" PetscInt_FMT " at r %.2f..%.2f mm, active to %.2f mm;", BoltContactSetPairName(c, p), cnt[2 * p], cnt[2 * p + 1], (double)(1e3 * rmin[p]), (double)(1e3 * rmax[p]), (double)(1e3 * rmax[P + p])));
   PetscCall(PetscPrintf(d->op->comm, "\n"));
   PetscFunctionReturn(0);
 }
@@ -58,20 +59,21 @@ PetscErrorCode BoltContactMonitorOuter(BoltDual *d, PetscInt outer, PetscInt inn
 PetscErrorCode BoltContactMonitorTension(BoltDual *d)
 {
   BoltContactState *s = d->op->state;
-  BoltContactSet   *c = s->set;
+  BoltContactSet   *c = BoltContactStateSet(s);
+  const PetscInt  ne = BoltContactSetElementCount(c);
   PetscInt          cnt[2] = {0, 0};
   PetscReal        *ts, mx[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, mn = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(4 * c->nelem + 1, &ts));
-  PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, s->lambda, ts));
-  for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscReal band = s->bandTraction[BoltContactSetElementPair(c, e)];
+  PetscCall(PetscMalloc1(4 * ne + 1, &ts));
+  PetscCall(BoltContactSetSmoothedNormalTraction(c, BoltContactStateWork(s), BoltContactStateLambda(s), ts));
+  for (PetscInt e = 0; e < ne; e++) {
+    const PetscReal band = BoltContactStateBandTraction(s, BoltContactSetElementPair(c, e));
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt         gp = 4 * e + q;
-      const PetscReal *n = &c->gpNormal[3 * gp], *l = &s->lambda[3 * gp];
+      const PetscReal *n = &BoltContactSetNormals(c)[3 * gp], *l = &BoltContactStateLambda(s)[3 * gp];
       PetscReal        ln = l[0] * n[0] + l[1] * n[1] + l[2] * n[2], ps = ts[gp];
-      if (!s->active[gp]) continue;
+      if (!BoltContactStateActive(s)[gp]) continue;
       mx[2] = PetscMax(mx[2], ps);
       if (ln < band) continue;
       cnt[0]++;

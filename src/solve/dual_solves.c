@@ -118,7 +118,7 @@ PetscErrorCode BoltDualGapsOf(BoltDual *d, Vec q, PetscReal gap[])
   if (op->ops.contactGaps) PetscCall(op->ops.contactGaps(op, q, gap));
   else {
     PetscCall(op->ops.contactDisplacements(op, q));
-    PetscCall(BoltContactSetGapsOf(op->contact, op->state->work, gap));
+    PetscCall(BoltContactSetGapsOf(op->contact, BoltContactStateWork(op->state), gap));
   }
   PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_FORCES, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));

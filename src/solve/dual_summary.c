@@ -20,11 +20,11 @@ PetscErrorCode BoltDualSummaryWrite(BoltDual *d, BoltJSON *j, PetscBool full)
   }
   PetscCall(BoltJSONInt(j, "failures", d->failures));
   PetscCall(BoltJSONInt(j, "cycles", d->cycles));
-  if (full && BoltContactStateIsComplementarity(d->op->state) && d->op->state->augment) {
+  if (full && BoltContactStateIsComplementarity(d->op->state) && BoltContactStateAugmented(d->op->state)) {
     /* one-sided contact after every converged step of the transient: penetration relative to
        the shortest contact-face edge, the largest tension of a closed pair and the largest
        |t.n g.n|, relative to the largest compression (times that edge) */
-    const PetscReal h = d->op->contact->hMin, tc = d->worstCompression > 0 ? d->worstCompression : 1;
+    const PetscReal h = BoltContactSetMinEdge(d->op->contact), tc = d->worstCompression > 0 ? d->worstCompression : 1;
     PetscCall(BoltJSONBeginObject(j, "strict_check"));
     PetscCall(BoltJSONReal(j, "penetration_over_h", d->worstPenetration / h));
     PetscCall(BoltJSONReal(j, "tension_pa", d->worstTension));

@@ -9,7 +9,7 @@ typedef struct {
 static PetscErrorCode FOMContactDisplacements(BoltOperator *op, Vec q)
 {
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetScatter(op->contact, op->state->work, q));
+  PetscCall(BoltContactSetScatter(op->contact, BoltContactStateWork(op->state), q));
   PetscFunctionReturn(0);
 }
 
@@ -18,7 +18,7 @@ static PetscErrorCode FOMContactForces(BoltOperator *op, const PetscReal lambda[
   BoltContactSet *c = op->contact;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltContactSetForcesOf(c, op->state->work, lambda, F));
+  PetscCall(BoltContactSetForcesOf(c, BoltContactStateWork(op->state), lambda, F));
   PetscFunctionReturn(0);
 }
 
@@ -45,7 +45,7 @@ static PetscErrorCode FOMVectorsSave(BoltOperator *op, PetscViewer v, PetscInt n
   Vec keys;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltMeshDofKeys(op->contact->mesh, x[0], &keys));
+  PetscCall(BoltMeshDofKeys(BoltContactSetMesh(op->contact), x[0], &keys));
   PetscCall(PetscObjectSetName((PetscObject)keys, "dof_keys"));
   PetscCall(VecView(keys, v));
   PetscCall(VecDestroy(&keys));
@@ -66,7 +66,7 @@ static PetscErrorCode FOMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt n
   PetscCall(BoltReadAll(v, op->comm, "dof_keys", &n, &kall));
   PetscCall(BoltKeyIndexCreate(n, kall, &ix));
   PetscCall(PetscFree(kall));
-  PetscCall(BoltMeshDofKeys(op->contact->mesh, y[0], &keys));
+  PetscCall(BoltMeshDofKeys(BoltContactSetMesh(op->contact), y[0], &keys));
   PetscCall(VecGetLocalSize(y[0], &nloc));
   PetscCall(VecGetArrayRead(keys, &kmine));
   for (PetscInt f = 0; f < nvec; f++) {
@@ -107,7 +107,7 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMesh(asmb, &mesh));
   PetscCall(BoltAssemblerGetMatrices(asmb, &K, &M));
-  PetscCall(BoltOperatorCreate(mesh->comm, "FOM", contact, &op));
+  PetscCall(BoltOperatorCreate(BoltMeshComm(mesh), "FOM", contact, &op));
   PetscCall(PetscNew(&ctx));
   ctx->loads           = loads;
   op->solverType       = MATSOLVERMUMPS;

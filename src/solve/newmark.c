@@ -89,14 +89,14 @@ PetscErrorCode BoltNewmarkSetUp(BoltNewmark *nm)
   PetscCall(VecDuplicate(nm->q, &nm->rhs));
   PetscCall(VecDuplicate(nm->q, &nm->work));
   PetscCall(PetscCalloc6(nm->nsteps + 1, &nm->probeTime, nm->nsteps + 1, &nm->probeValue, nm->nsteps + 1, &nm->energy, nm->nsteps + 1, &nm->slipping, nm->nsteps + 1, &nm->dissipated, BOLT_LEDGER * (nm->nsteps + 1), &nm->ledger));
-  PetscCall(PetscCalloc1(BOLT_PAIR_FORCE * op->contact->npairs * (nm->nsteps + 1) + 1, &nm->pairForce));
+  PetscCall(PetscCalloc1(BOLT_PAIR_FORCE * BoltContactSetPairCount(op->contact) * (nm->nsteps + 1) + 1, &nm->pairForce));
   PetscCall(VecDuplicate(nm->q, &nm->dq));
   for (PetscInt i = 0; i < 8; i++) PetscCall(VecDuplicate(nm->q, BoltNewmarkProductVec(nm, i)));
   if (nm->snapshotEvery > 0) {
     PetscInt n = nm->nsteps / nm->snapshotEvery + 1;
     PetscCall(PetscCalloc1(n, &nm->snapTime));
     PetscCall(VecDuplicateVecs(nm->q, n, &nm->snap));
-    PetscCall(PetscCalloc1(n * 4 * op->contact->nelem + 1, &nm->snapCodes));
+    PetscCall(PetscCalloc1(n * 4 * BoltContactSetElementCount(op->contact) + 1, &nm->snapCodes));
   }
   PetscCall(BoltDualSetUp(nm->dual));
   PetscFunctionReturn(0);
@@ -283,7 +283,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscCall(BoltNewmarkProductsFresh(nm));
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0], &ek, &es));
   PetscCall(BoltNewmarkLedger(nm, 0, 0, 0, ek, es));
-  if (op->contact->npairs) PetscCall(BoltContactStatePairForces(op->state, nm->pairForce));
+  if (BoltContactSetPairCount(op->contact)) PetscCall(BoltContactStatePairForces(op->state, nm->pairForce));
   if (BoltContactStateHasFriction(op->state)) { /* the pairs the preload left slipping */
     PetscInt nslip;
     PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
@@ -323,25 +323,25 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     nm->probeTime[n] = t;
     if (nm->snapshotEvery > 0 && n % nm->snapshotEvery == 0) {
       PetscCall(VecCopy(nm->q, nm->snap[nm->nsnap]));
-      BoltContactStatePointCodes(op->state, &nm->snapCodes[4 * op->contact->nelem * nm->nsnap]);
+      BoltContactStatePointCodes(op->state, &nm->snapCodes[4 * BoltContactSetElementCount(op->contact) * nm->nsnap]);
       nm->snapTime[nm->nsnap++] = t;
     }
     PetscCall(op->ops.probe(op, nm->q, &nm->probeValue[n]));
     PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n], &ek, &es));
     PetscCall(VecWAXPY(nm->dq, -1.0, qOld, nm->q));
     PetscCall(BoltNewmarkLedger(nm, n, BoltLoadAmplitude(nm, t - nm->dt), amp, ek, es));
-    if (op->contact->npairs) PetscCall(BoltContactStatePairForces(op->state, &nm->pairForce[BOLT_PAIR_FORCE * op->contact->npairs * n]));
+    if (BoltContactSetPairCount(op->contact)) PetscCall(BoltContactStatePairForces(op->state, &nm->pairForce[BOLT_PAIR_FORCE * BoltContactSetPairCount(op->contact) * n]));
     if (BoltContactStateHasFriction(op->state)) {
       PetscInt nslip;
       PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
       nm->slipping[n] = (PetscReal)nslip;
       PetscCall(BoltContactStateDissipated(op->state, &nm->dissipated[n]));
     }
-    if (nm->monitor) PetscCall(PetscPrintf(comm, "%s step %5" PetscInt_FMT " t %.6e outer %2" PetscInt_FMT " inner %3" PetscInt_FMT " active %" PetscInt_FMT "/%" PetscInt_FMT " energy %.10e probe %.6e\n", op->name, n, (double)t, nout, nin, op->state->nactive, op->contact->ngpGlobal, (double)nm->energy[n], (double)nm->probeValue[n]));
+    if (nm->monitor) PetscCall(PetscPrintf(comm, "%s step %5" PetscInt_FMT " t %.6e outer %2" PetscInt_FMT " inner %3" PetscInt_FMT " active %" PetscInt_FMT "/%" PetscInt_FMT " energy %.10e probe %.6e\n", op->name, n, (double)t, nout, nin, BoltContactStateActiveCount(op->state), BoltContactSetPointCountGlobal(op->contact), (double)nm->energy[n], (double)nm->probeValue[n]));
     if (n % PetscMax(1, nm->nsteps / 10) == 0 && n < nm->nsteps) { /* progress of a long run, every tenth of it */
       PetscLogDouble tp;
       PetscCall(PetscTime(&tp));
-      if (tp - t0 > 10) PetscCall(PetscPrintf(comm, "%s: step %" PetscInt_FMT " of %" PetscInt_FMT ", t = %g s, %.0f s so far; %" PetscInt_FMT " solves, %" PetscInt_FMT " factorisations, %" PetscInt_FMT " of %" PetscInt_FMT " contact points closed\n", op->name, n, nm->nsteps, (double)t, tp - t0, nm->dual->solves, nm->dual->factorizations, op->state->nactive, op->contact->ngpGlobal));
+      if (tp - t0 > 10) PetscCall(PetscPrintf(comm, "%s: step %" PetscInt_FMT " of %" PetscInt_FMT ", t = %g s, %.0f s so far; %" PetscInt_FMT " solves, %" PetscInt_FMT " factorisations, %" PetscInt_FMT " of %" PetscInt_FMT " contact points closed\n", op->name, n, nm->nsteps, (double)t, tp - t0, nm->dual->solves, nm->dual->factorizations, BoltContactStateActiveCount(op->state), BoltContactSetPointCountGlobal(op->contact)));
     }
     if (nm->checkpointEvery > 0 && n % nm->checkpointEvery == 0) {
       PetscLogDouble tc0, tc1;

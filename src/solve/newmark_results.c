@@ -120,11 +120,11 @@ PetscErrorCode BoltNewmarkSummaryWrite(BoltNewmark *nm, BoltJSON *j, PetscBool f
   PetscCall(BoltDualSummaryWrite(nm->dual, j, full));
   if (full) {
     PetscInt nsliding, nanchored;
-    PetscCall(BoltJSONInt(j, "active_points", nm->op->state->nactive));
+    PetscCall(BoltJSONInt(j, "active_points", BoltContactStateActiveCount(nm->op->state)));
     PetscCall(BoltContactStateCountReclosed(nm->op->state, &nsliding, &nanchored));
     PetscCall(BoltJSONInt(j, "sliding_points", nsliding));
     PetscCall(BoltJSONInt(j, "reclosed_points", nanchored));
-    PetscCall(BoltJSONInt(j, "contact_points", nm->op->contact->ngpGlobal));
+    PetscCall(BoltJSONInt(j, "contact_points", BoltContactSetPointCountGlobal(nm->op->contact)));
   }
   PetscCall(BoltJSONReal(j, "probe_final", nm->probeValue[nm->nsteps]));
   if (full) {

@@ -188,7 +188,7 @@ PetscErrorCode BoltOperatorView(BoltOperator *op, PetscViewer viewer)
 
   PetscFunctionBeginUser;
   PetscCall(MatGetSize(op->K, &n, NULL));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "%s operator: %" PetscInt_FMT " unknowns, contact law %s (%s), direct solver %s\n", op->name, n, op->state->lawType, op->state->augment ? "augmented Lagrangian" : "penalty", op->solverType));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s operator: %" PetscInt_FMT " unknowns, contact law %s (%s), direct solver %s\n", op->name, n, BoltContactStateLawType(op->state), BoltContactStateAugmented(op->state) ? "augmented Lagrangian" : "penalty", op->solverType));
   if (op->ops.view) PetscCall((*op->ops.view)(op, viewer));
   PetscFunctionReturn(0);
 }
@@ -215,7 +215,7 @@ PetscErrorCode BoltOperatorDestroy(BoltOperator **opp)
 PetscErrorCode BoltPreloadStateCreate(BoltOperator *op, Vec q, PetscReal outer, PetscReal inner, BoltPreloadState **stp)
 {
   BoltContactState *s  = op->state;
-  const PetscInt    ne = op->contact->nelem;
+  const PetscInt    ne = BoltContactSetElementCount(op->contact);
   BoltPreloadState *st;
 
   PetscFunctionBeginUser;
@@ -225,10 +225,10 @@ PetscErrorCode BoltPreloadStateCreate(BoltOperator *op, Vec q, PetscReal outer, 
   PetscCall(VecDuplicate(op->preload, &st->preload));
   PetscCall(VecCopy(op->preload, st->preload));
   PetscCall(PetscMalloc4(12 * ne + 1, &st->lambda, 4 * ne + 1, &st->active, 4 * ne + 1, &st->released, 12 * ne + 1, &st->anchor));
-  PetscCall(PetscArraycpy(st->lambda, s->lambda, 12 * ne));
-  PetscCall(PetscArraycpy(st->anchor, s->anchor, 12 * ne));
-  PetscCall(PetscArraycpy(st->active, s->active, 4 * ne));
-  PetscCall(PetscArraycpy(st->released, s->released, 4 * ne));
+  PetscCall(PetscArraycpy(st->lambda, BoltContactStateLambda(s), 12 * ne));
+  PetscCall(PetscArraycpy(st->anchor, BoltContactStateAnchor(s), 12 * ne));
+  PetscCall(PetscArraycpy(st->active, BoltContactStateActive(s), 4 * ne));
+  PetscCall(PetscArraycpy(st->released, BoltContactStateReleased(s), 4 * ne));
   st->outer = outer;
   st->inner = inner;
   *stp      = st;
@@ -245,7 +245,7 @@ PetscErrorCode BoltPreloadStateApply(const BoltPreloadState *st, BoltOperator *o
   PetscFunctionBeginUser;
   PetscCall(VecCopy(st->q, q));
   PetscCall(VecCopy(st->preload, op->preload));
-  PetscCall(PetscArraycpy(s->lambda, st->lambda, 12 * op->contact->nelem));
+  PetscCall(PetscArraycpy(BoltContactStateLambda(s), st->lambda, 12 * BoltContactSetElementCount(op->contact)));
   PetscCall(BoltContactStateSetActive(s, st->active, st->released));
   BoltContactStateSetAnchors(s, st->anchor);
   PetscFunctionReturn(0);

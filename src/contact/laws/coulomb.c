@@ -142,7 +142,7 @@ static PetscErrorCode CoulombReturnChange(BoltContactState *s, PetscReal moved, 
   PetscReal both[2] = {moved, pressure}, glob[2];
 
   PetscFunctionBeginUser;
-  PetscCall(MPIU_Allreduce(both, glob, 2, MPIU_REAL, MPI_MAX, s->set->mesh->comm));
+  PetscCall(MPIU_Allreduce(both, glob, 2, MPIU_REAL, MPI_MAX, BoltMeshComm(s->set->mesh)));
   s->frictionChange = glob[1] > 0 ? glob[0] / glob[1] : 0;
   PetscFunctionReturn(0);
 }
