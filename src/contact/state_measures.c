@@ -77,7 +77,7 @@ void BoltContactStateAnchorGaps(BoltContactState *s, PetscReal gap[])
    lambda once the augmentations converge; P g alone for pure penalty), zero elsewhere. The
    strict loop's multipliers already are the trial tractions of its last solve (its stiff
    penalty on the remaining gap would count that gap twice). */
-static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt gp, PetscReal t[3])
+static void BoltContactStateTraction(BoltContactState *s, PetscBool lambdaIsTraction, PetscInt e, PetscInt gp, PetscReal t[3])
 {
   BoltContactSet *c = s->set;
 
@@ -85,7 +85,7 @@ static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt g
     t[0] = t[1] = t[2] = 0;
     return;
   }
-  if (BoltContactStateLambdaIsTraction(s)) {
+  if (lambdaIsTraction) {
     for (PetscInt k = 0; k < 3; k++) t[k] = s->lambda[3 * gp + k];
     return;
   }
@@ -98,6 +98,7 @@ static void BoltContactStateTraction(BoltContactState *s, PetscInt e, PetscInt g
 PetscErrorCode BoltContactStatePairForces(BoltContactState *s, PetscReal force[])
 {
   BoltContactSet *c = s->set;
+  const PetscBool lambdaIsTraction = BoltContactStateLambdaIsTraction(s);
 
   PetscFunctionBeginUser;
   for (PetscInt p = 0; p < BOLT_PAIR_FORCE * c->npairs; p++) force[p] = 0;
@@ -106,7 +107,7 @@ PetscErrorCode BoltContactStatePairForces(BoltContactState *s, PetscReal force[]
       PetscInt         gp = 4 * e + q;
       PetscReal        t[3], *f = &force[BOLT_PAIR_FORCE * c->elem[e].pair];
       const PetscReal *n = &c->gpNormal[3 * gp], w = c->gpW[gp];
-      BoltContactStateTraction(s, e, gp, t);
+      BoltContactStateTraction(s, lambdaIsTraction, e, gp, t);
       for (PetscInt k = 0; k < 3; k++) f[k] -= w * t[k];
       f[3] += w * (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
     }
@@ -131,9 +132,10 @@ PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *s, PetscReal
 PetscErrorCode BoltContactStateNodalForces(BoltContactState *s, Vec F)
 {
   BoltContactSet *c = s->set;
+  const PetscBool lambdaIsTraction = BoltContactStateLambdaIsTraction(s);
 
   PetscFunctionBeginUser;
-  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) BoltContactStateTraction(s, gp / 4, gp, &s->work->tau[3 * gp]);
+  for (PetscInt gp = 0; gp < 4 * c->nelem; gp++) BoltContactStateTraction(s, lambdaIsTraction, gp / 4, gp, &s->work->tau[3 * gp]);
   PetscCall(BoltContactSetForcesOf(c, s->work, s->work->tau, F));
   PetscCall(VecScale(F, -1.0)); /* B' t is on the right-hand side with a minus */
   PetscFunctionReturn(0);
@@ -149,6 +151,7 @@ void BoltContactStatePointCodes(BoltContactState *s, unsigned char codes[])
 PetscErrorCode BoltContactStateTractionStats(BoltContactState *s, PetscReal *tnMin, PetscReal *tnMax, PetscReal *ttMax)
 {
   BoltContactSet *c = s->set;
+  const PetscBool lambdaIsTraction = BoltContactStateLambdaIsTraction(s);
   PetscReal       mn = PETSC_MAX_REAL, mx = -PETSC_MAX_REAL, tt = 0;
 
   PetscFunctionBeginUser;
@@ -156,7 +159,7 @@ PetscErrorCode BoltContactStateTractionStats(BoltContactState *s, PetscReal *tnM
     const PetscReal *n = &c->gpNormal[3 * gp];
     PetscReal        lam[3], ln, t2 = 0;
     if (!s->active[gp]) continue;
-    BoltContactStateTraction(s, gp / 4, gp, lam);
+    BoltContactStateTraction(s, lambdaIsTraction, gp / 4, gp, lam);
     ln = lam[0] * n[0] + lam[1] * n[1] + lam[2] * n[2];
     mn = PetscMin(mn, ln);
     mx = PetscMax(mx, ln);

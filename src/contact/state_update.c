@@ -187,6 +187,7 @@ PetscErrorCode BoltContactStateOpenTraction(BoltContactState *s, PetscReal tnOpe
 PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal tnOpen[], PetscInt *nchanged, PetscBool *cycling)
 {
   BoltContactSet *c = s->set;
+  const PetscBool complementarity = BoltContactStateIsComplementarity(s);
   PetscInt        loc[3] = {0, 0, 0}, glob[3];
   PetscReal       fric = 0, press = 0;
 
@@ -220,7 +221,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
         press = PetscMax(press, pressure); /* the pressure scale of the return maps' convergence test */
       }
       /* a sticking pair that opened and now closes to slide is in a new state, not a cycle */
-      if (BoltContactStateIsComplementarity(s) && now && !s->active[gp] && !s->released[gp]) loc[2]++;
+      if (complementarity && now && !s->active[gp] && !s->released[gp]) loc[2]++;
       if (now != s->active[gp]) {
         loc[0]++;
         s->dirty[e] = PETSC_TRUE;
