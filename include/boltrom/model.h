@@ -91,6 +91,13 @@ PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **);
 
 /* ------------------------------------------------------------------ analysis.c */
 PetscErrorCode BoltStaticSolve(Mat, Vec, Vec, const char[]);
-PetscErrorCode BoltModalSolve(Mat, Mat, PetscInt, const char[], PetscInt *, PetscReal[]);
+PetscErrorCode BoltModalSolve(Mat, Mat, BV, PetscInt, const char[], PetscInt *, PetscReal[]);
+/* rigid.c: a free model (no clamp, no support): its rigid motions, inertia relief, the shift */
+PetscBool      BoltMeshIsFree(const BoltMesh *);
+PetscErrorCode BoltMeshRigidMotion(BoltMesh *, PetscInt, const PetscReal[3], Vec);
+PetscErrorCode BoltAssemblerRigidModes(BoltAssembler *, BV *);
+PetscErrorCode BoltRigidProject(BV, Vec);
+PetscReal      BoltRigidShift(void);
+PetscErrorCode BoltStaticSolveFree(Mat, Mat, BV, Vec, Vec, const char[], PetscInt *);
 
 #endif

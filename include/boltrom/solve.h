@@ -95,6 +95,7 @@ PetscErrorCode BoltNewmarkView(BoltNewmark *, PetscViewer);
 PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 PetscErrorCode BoltNewmarkKeepGivenPreload(BoltNewmark *);
+PetscErrorCode BoltNewmarkSetRigidModes(BoltNewmark *, BV);
 PetscErrorCode BoltNewmarkSetPreloadTarget(BoltNewmark *, PetscReal);
 /* newmark_results.c: what a run hands the rest of the program (read-only) */
 typedef enum { BOLT_HISTORY_TIME, BOLT_HISTORY_PROBE, BOLT_HISTORY_ENERGY, BOLT_HISTORY_SLIPPING, BOLT_HISTORY_DISSIPATED, BOLT_HISTORY_LEDGER, BOLT_HISTORY_PAIR_FORCE } BoltHistory;

@@ -40,6 +40,8 @@ struct _n_BoltSummary {
   PetscBool       staticSolve;                   /* "static": the tied joint under the load */
   Vec             u;                             /* its displacement */
   PetscReal       probe, tStatic;
+  PetscInt        staticPasses; /* a free model: shifted solves of its static solve */
+  PetscBool       freeFree;     /* the tied analyses took the rigid-body motions apart */
   Vec             x, Kx, Mx;                     /* -verify_fields, or NULL */
   PetscInt        nev, nconv;                    /* "modal" if nev > 0 */
   PetscReal       freq[100], tModal;

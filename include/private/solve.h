@@ -103,6 +103,7 @@ struct _n_BoltNewmark {
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
   PetscBool       quasiStatic;    /* -ts_quasistatic: steps without inertia or damping */
   PetscBool       calibratePreload;
+  BV              rigid; /* a free model's rigid motions (global layout), taken out of the preloaded state; or NULL */
   PetscReal       preloadTarget, preloadScale;
   PetscReal       a[7];    /* Newmark coefficients a1..a6 (a[0] unused) */
   Vec             q, v, acc, rhs, work;

@@ -63,9 +63,11 @@ PetscErrorCode BoltRunTied(BoltRun *r)
   BoltSummary   *s = &r->sum;
   PetscLogDouble ts, te;
   Mat            K, M;
+  BV             R = NULL; /* a free model's rigid motions: inertia relief, deflated modes */
 
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, &M));
+  if (BoltMeshIsFree(r->mesh) && (r->opt.staticSolve || r->opt.nev > 0)) PetscCall(BoltAssemblerRigidModes(r->asmb, &R));
   if (BoltContactSetPairCount(r->contact)) PetscCall(BoltContactSetAssembleTied(r->contact, K, &r->Ktied));
   else {
     PetscCall(PetscObjectReference((PetscObject)K));
@@ -74,27 +76,31 @@ PetscErrorCode BoltRunTied(BoltRun *r)
   if (r->opt.staticSolve) {
     PetscCall(PetscLogStagePush(BOLT_STAGE_STATIC));
     PetscCall(PetscTime(&ts));
-    PetscCall(BoltStaticSolve(r->Ktied, BoltLoadSetLoad(r->loads), r->u, "static_"));
+    if (R) PetscCall(BoltStaticSolveFree(r->Ktied, M, R, BoltLoadSetLoad(r->loads), r->u, "static_", &s->staticPasses));
+    else PetscCall(BoltStaticSolve(r->Ktied, BoltLoadSetLoad(r->loads), r->u, "static_"));
     PetscCall(PetscTime(&te));
     s->tStatic = te - ts;
     PetscCall(BoltLoadSetProbe(r->loads, r->u, &s->probe));
     PetscCall(PetscLogStagePop());
+    if (R) PetscCall(PetscPrintf(r->comm, "Static (tied, free-free): inertia relief, the rigid-body motion taken out (%" PetscInt_FMT " shifted solves)\n", s->staticPasses));
     PetscCall(PetscPrintf(r->comm, "Static (tied): probe u_%c at '%s' = %.10e m under %g N (%.2f s)\n", "xyz"[BoltLoadSetProbeComponent(r->loads)], BoltLoadSetProbeGroup(r->loads), (double)s->probe, (double)BoltLoadSetLoadForce(r->loads), (double)s->tStatic));
   }
   if (r->opt.exportDir[0]) PetscCall(BoltExportTied(r->opt.exportDir, r->Ktied, M));
   if (r->opt.nev > 0) {
     PetscCall(PetscLogStagePush(BOLT_STAGE_MODAL));
     PetscCall(PetscTime(&ts));
-    PetscCall(BoltModalSolve(r->Ktied, M, r->opt.nev, "modal_", &s->nconv, s->freq));
+    PetscCall(BoltModalSolve(r->Ktied, M, R, r->opt.nev, "modal_", &s->nconv, s->freq));
     PetscCall(PetscTime(&te));
     s->tModal = te - ts;
     PetscCall(PetscLogStagePop());
-    PetscCall(PetscPrintf(r->comm, "Eigenfrequencies (tied) [Hz]:"));
+    PetscCall(PetscPrintf(r->comm, R ? "Eigenfrequencies (tied, free-free: the 6 rigid-body modes apart) [Hz]:" : "Eigenfrequencies (tied) [Hz]:"));
     for (PetscInt i = 0; i < s->nconv; i++) PetscCall(PetscPrintf(r->comm, " %.6f", (double)s->freq[i]));
     PetscCall(PetscPrintf(r->comm, " (%.2f s)\n", (double)s->tModal));
   }
   if (r->opt.verifyFields) PetscCall(BoltVerifyFields(r->mesh, r->Ktied, M, r->u, r->opt.verifyField, &s->x, &s->Kx, &s->Mx));
   if (r->opt.checkRigid) PetscCall(BoltCheckRigid(r->asmb, r->u, s->rigid));
+  s->freeFree = (PetscBool)(R != NULL);
+  PetscCall(BVDestroy(&R));
   PetscFunctionReturn(0);
 }
 
@@ -107,6 +113,12 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscFunctionBeginUser;
   PetscCall(BoltFOMCreate(r->asmb, contact, r->loads, PETSC_TRUE, &r->fomOp));
   PetscCall(BoltRunNewmarkCreate(r, r->fomOp, &r->fomNm));
+  if (BoltMeshIsFree(r->mesh)) {
+    BV R;
+    PetscCall(BoltAssemblerRigidModes(r->asmb, &R));
+    PetscCall(BoltNewmarkSetRigidModes(r->fomNm, R));
+    PetscCall(BVDestroy(&R));
+  }
   PetscCall(PetscLogStagePush(BOLT_STAGE_PRELOAD));
   PetscCall(BoltNewmarkPreload(r->fomNm));
   PetscCall(PetscLogStagePop());

@@ -46,11 +46,13 @@ static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
     PetscCall(BoltJSONRealArray(j, "probe_coordinates", 3, BoltLoadSetProbeCoordinates(loads)));
     PetscCall(BoltJSONReal(j, "probe_displacement", s->probe));
     PetscCall(BoltJSONReal(j, "seconds", s->tStatic));
+    if (s->freeFree) PetscCall(BoltJSONInt(j, "inertia_relief_passes", s->staticPasses));
     PetscCall(BoltJSONEndObject(j));
   }
   if (s->nev > 0) {
     PetscCall(BoltJSONBeginObject(j, "modal"));
     PetscCall(BoltJSONRealArray(j, "frequencies_hz", s->nconv, s->freq));
+    PetscCall(BoltJSONInt(j, "rigid_modes_deflated", s->freeFree ? 6 : 0));
     PetscCall(BoltJSONReal(j, "seconds", s->tModal));
     PetscCall(BoltJSONEndObject(j));
   }

@@ -76,33 +76,6 @@ static PetscErrorCode SmoothField(const PetscReal X[3], PetscInt part, PetscReal
   PetscFunctionReturn(0);
 }
 
-typedef struct {
-  PetscInt  mode;
-  PetscReal center[3];
-} RigidCtx;
-
-/* Rigid motion number mode: translations along x, y, z (0-2), rotations about them (3-5). */
-static PetscErrorCode RigidMotion(const PetscReal X[3], PetscInt part, PetscReal u[3], void *ctx)
-{
-  RigidCtx *r = (RigidCtx *)ctx;
-  PetscReal y[3];
-
-  PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < 3; d++) {
-    y[d] = X[d] - r->center[d];
-    u[d] = 0;
-  }
-  if (r->mode < 3) u[r->mode] = 1.0;
-  else { /* rotation about axis mode-3: omega x y */
-    PetscReal w[3] = {0, 0, 0};
-    w[r->mode - 3] = 1.0;
-    u[0]           = w[1] * y[2] - w[2] * y[1];
-    u[1]           = w[2] * y[0] - w[0] * y[2];
-    u[2]           = w[0] * y[1] - w[1] * y[0];
-  }
-  PetscFunctionReturn(0);
-}
-
 /* x (kind 0: smooth, 1: linear), K x and M x, laid out as layout; the caller destroys them. */
 PetscErrorCode BoltVerifyFields(BoltMesh *mesh, Mat K, Mat M, Vec layout, PetscInt kind, Vec *x, Vec *Kx, Vec *Mx)
 {
@@ -135,10 +108,9 @@ PetscErrorCode BoltCheckRigid(BoltAssembler *asmb, Vec layout, PetscReal rigid[]
     PetscCall(BoltAssemblerPartStiffness(asmb, p, &Kp));
     PetscCall(MatNorm(Kp, NORM_FROBENIUS, &knorm));
     for (PetscInt k = 0; k < 6; k++) {
-      RigidCtx  rc = {k, {0.1, 0.0, 0.01}};
-      PetscReal rn, yn;
-      PetscCall(VecZeroEntries(x));
-      PetscCall(BoltMeshFillVertexField(mesh, RigidMotion, &rc, x));
+      const PetscReal center[3] = {0.1, 0.0, 0.01};
+      PetscReal       rn, yn;
+      PetscCall(BoltMeshRigidMotion(mesh, k, center, x));
       PetscCall(MatMult(Kp, x, Kx));
       PetscCall(VecNorm(x, NORM_2, &rn));
       PetscCall(VecNorm(Kx, NORM_2, &yn));

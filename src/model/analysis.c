@@ -24,9 +24,9 @@ PetscErrorCode BoltStaticSolve(Mat K, Vec f, Vec u, const char prefix[])
   PetscFunctionReturn(0);
 }
 
-/* The eigensolver of the nev lowest eigenpairs, by shift-and-invert about 0, then its options.
-   Operators (K, M) are set before, if at all. */
-static PetscErrorCode ModalSetUp(EPS eps, PetscInt nev)
+/* The eigensolver of the nev lowest eigenpairs, by shift-and-invert about target (0, or a free
+   model's small negative shift), then its options. Operators (K, M) are set before, if at all. */
+static PetscErrorCode ModalSetUp(EPS eps, PetscInt nev, PetscReal target)
 {
   ST  st;
   KSP ksp;
@@ -35,7 +35,7 @@ static PetscErrorCode ModalSetUp(EPS eps, PetscInt nev)
   PetscCall(EPSSetProblemType(eps, EPS_GHEP));
   PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
-  PetscCall(EPSSetTarget(eps, 0.0));
+  PetscCall(EPSSetTarget(eps, target));
   PetscCall(EPSSetTolerances(eps, 1e-10, PETSC_DEFAULT));
   PetscCall(EPSGetST(eps, &st));
   PetscCall(STSetType(st, STSINVERT));
@@ -53,13 +53,15 @@ PetscErrorCode BoltModalSetFromOptions(MPI_Comm comm, PetscInt nev, const char p
   PetscFunctionBeginUser;
   PetscCall(EPSCreate(comm, &eps));
   PetscCall(EPSSetOptionsPrefix(eps, prefix));
-  PetscCall(ModalSetUp(eps, PetscMax(nev, 1)));
+  PetscCall(ModalSetUp(eps, PetscMax(nev, 1), 0.0));
   PetscCall(EPSDestroy(&eps));
   PetscFunctionReturn(0);
 }
 
-/* The nev lowest eigenfrequencies [Hz] of K x = w^2 M x, by shift-and-invert about 0. */
-PetscErrorCode BoltModalSolve(Mat K, Mat M, PetscInt nev, const char prefix[], PetscInt *nconv, PetscReal freq[])
+/* The nev lowest eigenfrequencies [Hz] of K x = w^2 M x, by shift-and-invert about 0; for a free
+   model (R: its rigid motions, else NULL) the nev lowest elastic ones, R deflated and the shift
+   -BoltRigidShift() keeping the factorisation regular. */
+PetscErrorCode BoltModalSolve(Mat K, Mat M, BV R, PetscInt nev, const char prefix[], PetscInt *nconv, PetscReal freq[])
 {
   EPS eps;
 
@@ -68,7 +70,16 @@ PetscErrorCode BoltModalSolve(Mat K, Mat M, PetscInt nev, const char prefix[], P
   PetscCall(EPSCreate(PetscObjectComm((PetscObject)K), &eps));
   PetscCall(EPSSetOptionsPrefix(eps, prefix));
   PetscCall(EPSSetOperators(eps, K, M));
-  PetscCall(ModalSetUp(eps, nev));
+  if (R) {
+    Vec rigid[6];
+    for (PetscInt k = 0; k < 6; k++) {
+      PetscCall(MatCreateVecs(M, &rigid[k], NULL));
+      PetscCall(BVCopyVec(R, k, rigid[k]));
+    }
+    PetscCall(EPSSetDeflationSpace(eps, 6, rigid));
+    for (PetscInt k = 0; k < 6; k++) PetscCall(VecDestroy(&rigid[k]));
+  }
+  PetscCall(ModalSetUp(eps, nev, R ? -BoltRigidShift() : 0.0));
   PetscCall(EPSSolve(eps));
   PetscCall(EPSGetConverged(eps, nconv));
   PetscCheck(*nconv >= nev, PetscObjectComm((PetscObject)K), PETSC_ERR_NOT_CONVERGED, "Eigensolver found %" PetscInt_FMT " of %" PetscInt_FMT " eigenpairs: raise -%seps_max_it or check the model", *nconv, nev, prefix ? prefix : "");

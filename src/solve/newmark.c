@@ -129,6 +129,9 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
   }
   nm->staticOuter = nout;
   nm->staticInner = nin;
+  /* a free model's static solution holds an arbitrary rigid motion (its operator is singular, the
+     preload self-balanced): taken out, it changes no gap and no force */
+  if (nm->rigid) PetscCall(BoltRigidProject(nm->rigid, nm->q));
   PetscCall(VecZeroEntries(nm->v));
   PetscCall(VecZeroEntries(nm->acc));
   PetscFunctionReturn(0);
@@ -384,6 +387,17 @@ PetscErrorCode BoltNewmarkSetPreloadTarget(BoltNewmark *nm, PetscReal force)
   PetscFunctionReturn(0);
 }
 
+/* A free model (the FOM's global layout): its rigid motions R (mass-orthonormal), taken out of
+   the preloaded state. The integrator keeps a reference. */
+PetscErrorCode BoltNewmarkSetRigidModes(BoltNewmark *nm, BV R)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectReference((PetscObject)R));
+  PetscCall(BVDestroy(&nm->rigid));
+  nm->rigid = R;
+  PetscFunctionReturn(0);
+}
+
 /* The operator's contact state already holds the preloaded state (handed over by another
    model): the static start neither calibrates the preload nor judges that active set again. */
 PetscErrorCode BoltNewmarkKeepGivenPreload(BoltNewmark *nm)
@@ -401,6 +415,7 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   PetscFunctionBeginUser;
   if (!nm) PetscFunctionReturn(0);
   PetscCall(BoltDualDestroy(&nm->dual));
+  PetscCall(BVDestroy(&nm->rigid));
   PetscCall(VecDestroy(&nm->q));
   PetscCall(VecDestroy(&nm->v));
   PetscCall(VecDestroy(&nm->acc));
