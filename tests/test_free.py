@@ -9,7 +9,7 @@ import sys
 import h5py
 import numpy as np
 
-from conftest import ROOT, make_mesh, run_summary
+from conftest import ROOT, make_mesh, run_boltrom, run_summary
 
 sys.path.insert(0, str(ROOT / "python"))
 import beam_theory  # noqa: E402
@@ -73,3 +73,16 @@ def test_free_joint_preload_has_no_rigid_drift(joint_small, tmp_path):
     # what remains is the difference between the mass-weighted and the unweighted rigid fit
     # (measured 2.4 % of the elastic displacement), not a drift (700 % before)
     assert np.abs(rigid).max() <= 0.1 * scale
+
+
+def test_free_rom_is_refused_before_any_work(joint_small, tmp_path):
+    """The ROM's offline static shapes are not made for free structures yet: one line says so and
+    what to do, before any computation, and nothing is written."""
+    mesh, _ = joint_small
+    out = tmp_path / "out"
+    proc = run_boltrom(["-mesh", mesh, "-clamp", "false", "-rom", "true", "-output_dir", out,
+                        "-rom_file", out / "free.rom.h5"], check=False)
+    assert proc.returncode != 0
+    lines = [l for l in proc.stderr.splitlines() if "free-free" in l]
+    assert len(lines) == 1 and "-rom false" in lines[0], proc.stderr
+    assert not out.exists() or not any(out.iterdir())
