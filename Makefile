@@ -145,7 +145,7 @@ verify: deps all
 	$(PYTHON) scripts/verify-model --levels 1 2 3 --np $(NP)
 
 test: deps all
-	$(PYTHON) -m pytest -q tests
+	$(PYTHON) -m pytest -q --durations=15 tests
 
 # docs/options.md: every option with its default and help, from bin/boltrom -help.
 options: deps all
