@@ -42,6 +42,7 @@ struct _n_BoltSummary {
   PetscReal       probe, tStatic;
   PetscInt        staticPasses; /* a free model: shifted solves of its static solve */
   PetscBool       freeFree;     /* the tied analyses took the rigid-body motions apart */
+  PetscReal       rigidFreq[6]; /* a free model: the rigid motions' frequencies under K [Hz] */
   Vec             x, Kx, Mx;                     /* -verify_fields, or NULL */
   PetscInt        nev, nconv;                    /* "modal" if nev > 0 */
   PetscReal       freq[100], tModal;

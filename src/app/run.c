@@ -90,12 +90,14 @@ PetscErrorCode BoltRunTied(BoltRun *r)
     PetscCall(PetscLogStagePush(BOLT_STAGE_MODAL));
     PetscCall(PetscTime(&ts));
     PetscCall(BoltModalSolve(r->Ktied, M, R, r->opt.nev, "modal_", &s->nconv, s->freq));
+    if (R) PetscCall(BoltRigidFrequencies(R, r->Ktied, s->rigidFreq));
     PetscCall(PetscTime(&te));
     s->tModal = te - ts;
     PetscCall(PetscLogStagePop());
     PetscCall(PetscPrintf(r->comm, R ? "Eigenfrequencies (tied, free-free: the 6 rigid-body modes apart) [Hz]:" : "Eigenfrequencies (tied) [Hz]:"));
     for (PetscInt i = 0; i < s->nconv; i++) PetscCall(PetscPrintf(r->comm, " %.6f", (double)s->freq[i]));
     PetscCall(PetscPrintf(r->comm, " (%.2f s)\n", (double)s->tModal));
+    if (R) PetscCall(PetscPrintf(r->comm, "  rigid-body modes under K (should be 0) [Hz]: largest %.3e\n", (double)s->rigidFreq[5]));
   }
   if (r->opt.verifyFields) PetscCall(BoltVerifyFields(r->mesh, r->Ktied, M, r->u, r->opt.verifyField, &s->x, &s->Kx, &s->Mx));
   if (r->opt.checkRigid) PetscCall(BoltCheckRigid(r->asmb, r->u, s->rigid));

@@ -53,6 +53,7 @@ static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
     PetscCall(BoltJSONBeginObject(j, "modal"));
     PetscCall(BoltJSONRealArray(j, "frequencies_hz", s->nconv, s->freq));
     PetscCall(BoltJSONInt(j, "rigid_modes_deflated", s->freeFree ? 6 : 0));
+    if (s->freeFree) PetscCall(BoltJSONRealArray(j, "rigid_mode_frequencies_hz", 6, s->rigidFreq));
     PetscCall(BoltJSONReal(j, "seconds", s->tModal));
     PetscCall(BoltJSONEndObject(j));
   }

@@ -1,9 +1,10 @@
 /* A free-free model (no clamp, no support): its six rigid-body motions, mass-orthonormal (a SLEPc
    BV), the static solve under inertia relief, and what the modal solve deflates. K is singular
    there, so no factorisation of K alone is made: the solves factor K + sigma M, which is regular,
-   with sigma = (2 pi x 1 Hz)^2, far below any elastic mode of a structure (docs/model.md,
-   "Free-free models"), and take the shift out again by refinement. */
+   with sigma = (2 pi x 10 Hz)^2, below the elastic modes of the structures this code is for
+   (docs/decisions.md, "Free-free models"), and take the shift out again by refinement. */
 #include "private/model.h"
+#include <petscblaslapack.h>
 
 typedef struct {
   PetscInt  mode;
@@ -118,16 +119,16 @@ static PetscErrorCode RigidRelieve(BV R, Mat M, Vec f)
   PetscFunctionReturn(0);
 }
 
-/* The shift of the free model's factorisations [1/s^2]: (2 pi x 1 Hz)^2. */
+/* The shift of the free model's factorisations [1/s^2]: (2 pi x 10 Hz)^2 (docs/decisions.md). */
 PetscReal BoltRigidShift(void)
 {
-  return 4 * PETSC_PI * PETSC_PI;
+  return 4 * PETSC_PI * PETSC_PI * 100;
 }
 
 /* K u = f - M R R' f with u M-orthogonal to the rigid motions R: the static response of a free
    model under inertia relief. K + sigma M is factored once; each pass solves
    (K + sigma M) u+ = f_r + sigma M u and projects out the rigid motions, which shrinks the error
-   in mode i by sigma / (w_i^2 + sigma) (about 1e-4 for a first mode at 100 Hz). The passes stop
+   in mode i by sigma / (w_i^2 + sigma) (0.01 for a first mode at 100 Hz). The passes stop
    when u moves by less than 1e-12 of itself; *passes returns their number. */
 PetscErrorCode BoltStaticSolveFree(Mat K, Mat M, BV R, Vec f, Vec u, const char prefix[], PetscInt *passes)
 {
@@ -172,5 +173,27 @@ PetscErrorCode BoltStaticSolveFree(Mat K, Mat M, BV R, Vec f, Vec u, const char 
   PetscCall(KSPDestroy(&ksp));
   PetscCall(MatDestroy(&A));
   PetscCall(PetscLogEventEnd(BOLT_EVENT_STATIC_SOLVE, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The frequencies [Hz] of the rigid motions under K: sqrt of the eigenvalues of R' K R (R mass-
+   orthonormal), ascending. Zero up to round-off when K holds no spurious constraint. */
+PetscErrorCode BoltRigidFrequencies(BV R, Mat K, PetscReal freq[6])
+{
+  Mat          H;
+  PetscScalar *h, work[64];
+  PetscReal    w[6];
+  PetscBLASInt n = 6, lwork = 64, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, 6, 6, NULL, &H));
+  PetscCall(BVMatProject(R, K, R, H));
+  PetscCall(MatDenseGetArray(H, &h));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("N", "U", &n, h, &n, w, work, &lwork, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed (%d)", (int)info);
+  PetscCall(MatDenseRestoreArray(H, &h));
+  for (PetscInt k = 0; k < 6; k++) freq[k] = PetscSqrtReal(PetscAbsReal(w[k])) / (2 * PETSC_PI);
+  PetscCall(PetscSortReal(6, freq));
+  PetscCall(MatDestroy(&H));
   PetscFunctionReturn(0);
 }
