@@ -100,6 +100,8 @@ PetscErrorCode BoltContactStateCountActive(BoltContactState *);
 PetscErrorCode BoltContactStateCountReclosed(BoltContactState *, PetscInt *, PetscInt *);
 PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
 PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
+/* state_check.c: every point checked from raw gaps computed at every point */
+PetscErrorCode BoltContactStateCheck(BoltContactState *, const PetscReal[], PetscReal[3], PetscInt *);
 #define BOLT_CONTACT_PACK 108 /* values per element of BoltContactStatePack */
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);

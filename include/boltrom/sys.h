@@ -11,7 +11,7 @@ extern PetscLogEvent BOLT_EVENT_MESH_READ, BOLT_EVENT_MESH_DISTRIBUTE, BOLT_EVEN
                      BOLT_EVENT_OUTPUT, BOLT_EVENT_CONTACT_STIFFNESS, BOLT_EVENT_DISPLACEMENTS,
                      BOLT_EVENT_CONTACT_FORCES, BOLT_EVENT_CONTACT_UPDATE, BOLT_EVENT_BASIS,
                      BOLT_EVENT_PROJECTION, BOLT_EVENT_KRYLOV_FACTOR, BOLT_EVENT_KRYLOV_SOLVE,
-                     BOLT_EVENT_KRYLOV_ORTH, BOLT_EVENT_INTERFACE_REDUCTION;
+                     BOLT_EVENT_KRYLOV_ORTH, BOLT_EVENT_INTERFACE_REDUCTION, BOLT_EVENT_CONTACT_CHECK;
 extern PetscLogStage BOLT_STAGE_SET_UP, BOLT_STAGE_STATIC, BOLT_STAGE_MODAL, BOLT_STAGE_OUTPUT,
                      BOLT_STAGE_PRELOAD, BOLT_STAGE_TRANSIENT;
 PetscErrorCode BoltLogRegister(void);
@@ -48,8 +48,10 @@ PetscErrorCode BoltGrowReal(PetscReal **, PetscInt *, PetscInt);
 /* ------------------------------------------------------------------ sys/hdf5.c: folders, datasets */
 PetscErrorCode BoltMakeDir(MPI_Comm, const char[]);
 PetscErrorCode BoltMakeParentDir(MPI_Comm, const char[]);
-/* sys/option_vector.c: a vector option of exactly n finite reals, inside PetscOptionsBegin/End */
+/* sys/option_vector.c: a vector option of exactly n finite reals, inside PetscOptionsBegin/End; no option
+   given a value that is not finite */
 PetscErrorCode BoltOptionsRealVector(PetscOptionItems *, const char[], const char[], PetscInt, PetscReal[], PetscBool *);
+PetscErrorCode BoltOptionsCheckFinite(MPI_Comm);
 PetscErrorCode BoltHDF5WriteValues(PetscViewer, MPI_Comm, const char[], PetscInt, PetscInt, const PetscScalar[], PetscBool);
 PetscErrorCode BoltHDF5WriteVecs(PetscViewer, MPI_Comm, PetscInt, const char *const[], Vec[], PetscBool);
 PetscErrorCode BoltReadAll(PetscViewer, MPI_Comm, const char[], PetscInt *, PetscReal **);

@@ -88,6 +88,12 @@ struct BoltDual_s {
   PetscReal       lastChange, lastPenetration; /* of the last inner iteration */
   /* strict law: the worst converged state so far (BoltContactStateComplementarity) */
   PetscReal       worstPenetration, worstTension, worstCompression, worstProduct;
+  /* every node pair checked after each converged transient step (BoltDualCheckStep): the worst
+     penetration [m], tension [Pa] and cone excess, held points that would leave their state */
+  PetscReal       checkWorst[3], tCheck;
+  PetscInt        checkEvery, checkSteps, checkLeaving, checkFirstStep;
+  PetscReal       checkFirstTime;
+  PetscReal      *checkGaps; /* 3 per local point */
 };
 
 struct _n_BoltNewmark {
@@ -131,5 +137,9 @@ struct _n_BoltNewmark {
   PetscReal       tOnlineBefore;    /* online time spent before the restart */
   PetscReal       tCheckpoint;      /* time spent writing checkpoints (not online work) */
 };
+
+/* dual_check.c: every node pair checked after each converged transient step */
+PetscErrorCode BoltDualCheckStep(BoltDual *, Vec);
+PetscErrorCode BoltDualCheckSummaryWrite(BoltDual *, BoltJSON *);
 
 #endif

@@ -36,6 +36,7 @@ PetscErrorCode BoltDualCreate(BoltOperator *op, BoltDual **dp)
   d->extrapolate    = PETSC_TRUE;
   d->closeCycles    = PETSC_TRUE;
   d->preloadScale   = 1.0;
+  d->checkEvery     = 10; /* docs/decisions.md */
   PetscCall(PetscStrncpy(d->innerType, "cg", sizeof(d->innerType)));
   *dp = d;
   PetscFunctionReturn(0);
@@ -57,9 +58,11 @@ PetscErrorCode BoltDualSetFromOptions(BoltDual *d)
   PetscCall(PetscOptionsBool("-contact_cycle_close", "When the active set cycles or has not settled in half of -contact_max_outer, points may only close for the rest of the step", NULL, d->closeCycles, &d->closeCycles, NULL));
   PetscCall(PetscOptionsBool("-contact_extrapolate", "Strict law: start each step's loop from the multipliers of the last two steps, extrapolated linearly in time", NULL, d->extrapolate, &d->extrapolate, NULL));
   PetscCall(PetscOptionsBool("-contact_continue", "On non-convergence, warn and go on instead of stopping", NULL, d->continueOnFailure, &d->continueOnFailure, NULL));
+  PetscCall(PetscOptionsInt("-contact_check_every", "Check every node pair's contact conditions (held ones included) after every k-th step of the transient; 0: never", NULL, d->checkEvery, &d->checkEvery, NULL));
   PetscCall(PetscOptionsInt("-contact_monitor", "Print the contact loop: 1 a line per outer iteration, 2 also per inner CG iteration", NULL, d->monitor, &d->monitor, NULL));
   PetscOptionsEnd();
   PetscCheck(d->maxOuter >= 1 && d->maxInner >= 1, comm, PETSC_ERR_USER_INPUT, "-contact_max_outer and -contact_max_inner must be >= 1");
+  PetscCheck(d->checkEvery >= 0, comm, PETSC_ERR_USER_INPUT, "-contact_check_every must be >= 0 (0: no check)");
   PetscCall(PetscFunctionListFind(BoltDualInnerList, d->innerType, &d->inner));
   PetscCheck(d->inner, comm, PETSC_ERR_USER_INPUT, "Unknown -contact_inner %s: use uzawa or cg", d->innerType);
   PetscFunctionReturn(0);
@@ -409,6 +412,7 @@ PetscErrorCode BoltDualDestroy(BoltDual **dp)
 
   PetscFunctionBeginUser;
   if (!d) PetscFunctionReturn(0);
+  PetscCall(PetscFree(d->checkGaps));
   PetscCall(VecDestroy(&d->Fc));
   PetscCall(VecDestroy(&d->work));
   PetscCall(VecDestroy(&d->qp));

@@ -33,5 +33,6 @@ PetscErrorCode BoltDualSummaryWrite(BoltDual *d, BoltJSON *j, PetscBool full)
     PetscCall(BoltJSONReal(j, "complementarity_rel", d->worstProduct / (tc * h)));
     PetscCall(BoltJSONEndObject(j));
   }
+  PetscCall(BoltDualCheckSummaryWrite(d, j));
   PetscFunctionReturn(0);
 }

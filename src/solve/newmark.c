@@ -313,6 +313,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     nm->dual->step = n;
     nm->dual->time = t;
     PetscCall(BoltDualSolve(nm->dual, nm->rhs, nm->q, n == step0 + 1 ? PETSC_TRUE : PETSC_FALSE, &nout, &nin));
+    PetscCall(BoltDualCheckStep(nm->dual, nm->q));
     /* a_new = a1 (q - q_old) - a2 v - a3 a;  v_new = v + dt ((1 - gamma) a + gamma a_new) */
     PetscCall(VecWAXPY(nm->work, -1.0, qOld, nm->q));
     PetscCall(VecAXPBYPCZ(nm->work, -a[2], -a[3], a[1], nm->v, nm->acc));

@@ -11,7 +11,7 @@ PetscLogEvent BOLT_EVENT_MESH_READ, BOLT_EVENT_MESH_DISTRIBUTE, BOLT_EVENT_ASSEM
               BOLT_EVENT_OUTPUT, BOLT_EVENT_CONTACT_STIFFNESS, BOLT_EVENT_DISPLACEMENTS,
               BOLT_EVENT_CONTACT_FORCES, BOLT_EVENT_CONTACT_UPDATE, BOLT_EVENT_BASIS,
               BOLT_EVENT_PROJECTION, BOLT_EVENT_KRYLOV_FACTOR, BOLT_EVENT_KRYLOV_SOLVE,
-              BOLT_EVENT_KRYLOV_ORTH, BOLT_EVENT_INTERFACE_REDUCTION;
+              BOLT_EVENT_KRYLOV_ORTH, BOLT_EVENT_INTERFACE_REDUCTION, BOLT_EVENT_CONTACT_CHECK;
 PetscLogStage BOLT_STAGE_SET_UP, BOLT_STAGE_STATIC, BOLT_STAGE_MODAL, BOLT_STAGE_OUTPUT,
               BOLT_STAGE_PRELOAD, BOLT_STAGE_TRANSIENT;
 
@@ -38,6 +38,7 @@ PetscErrorCode BoltLogRegister(void)
   PetscCall(PetscLogEventRegister("Displacements", classid, &BOLT_EVENT_DISPLACEMENTS));
   PetscCall(PetscLogEventRegister("ContactForces", classid, &BOLT_EVENT_CONTACT_FORCES));
   PetscCall(PetscLogEventRegister("ContactUpdate", classid, &BOLT_EVENT_CONTACT_UPDATE));
+  PetscCall(PetscLogEventRegister("ContactCheck", classid, &BOLT_EVENT_CONTACT_CHECK));
   PetscCall(PetscLogEventRegister("RomBasis", classid, &BOLT_EVENT_BASIS));
   PetscCall(PetscLogEventRegister("RomProjection", classid, &BOLT_EVENT_PROJECTION));
   PetscCall(PetscLogEventRegister("KrylovFactor", classid, &BOLT_EVENT_KRYLOV_FACTOR));

@@ -66,3 +66,52 @@ PetscErrorCode BoltOptionsRealVector(PetscOptionItems *PetscOptionsObject, const
   PetscCall(PetscOptionsGetRealArray(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, v, &nread, set));
   PetscFunctionReturn(0);
 }
+
+/* Whether token (spaces around it allowed) reads whole as a number that is not finite: "nan",
+   "inf", "-Infinity", or one too large for a real ("1e999"). A word that is not a number is not. */
+static PetscBool BoltTokenNonFinite(const char *p, size_t len)
+{
+  char   buf[64], *end;
+  double x;
+
+  while (len && *p == ' ') p++, len--;
+  while (len && p[len - 1] == ' ') len--;
+  if (!len || len >= sizeof(buf)) return PETSC_FALSE;
+  memcpy(buf, p, len);
+  buf[len] = '\0';
+  x        = strtod(buf, &end);
+  return (PetscBool)(!*end && !isfinite(x));
+}
+
+/* Every real option is refused a value that is not finite, whoever reads it: PETSc's reader takes
+   "nan" and "inf" as numbers, which then pass range checks (every comparison with a NaN is false)
+   or overflow a conversion. Called before any option is read, so that every option given is still
+   in the unused list; a comma-separated value is checked component by component. */
+PetscErrorCode BoltOptionsCheckFinite(MPI_Comm comm)
+{
+  PetscInt n;
+  char   **names, **values;
+  char     msg[PETSC_MAX_PATH_LEN] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt i = 0; i < n && !msg[0]; i++) {
+    const char *p = values[i];
+    PetscInt    k = 0, ncomma = 0;
+    if (!p) continue;
+    for (const char *c = p; *c; c++) ncomma += (*c == ',');
+    while (p && !msg[0]) {
+      const char *comma = strchr(p, ',');
+      size_t      len   = comma ? (size_t)(comma - p) : strlen(p);
+      k++;
+      if (BoltTokenNonFinite(p, len)) {
+        if (ncomma) PetscCall(PetscSNPrintf(msg, sizeof(msg), "-%s %s: component %" PetscInt_FMT " is not a finite number; give finite reals, comma-separated", names[i], values[i], k));
+        else PetscCall(PetscSNPrintf(msg, sizeof(msg), "-%s %s: not a finite number; give a finite real value", names[i], values[i]));
+      }
+      p = comma ? comma + 1 : NULL;
+    }
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "%s", msg);
+  PetscFunctionReturn(0);
+}
