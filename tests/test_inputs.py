@@ -164,8 +164,9 @@ def test_part_left_floating(joint_ascii, tmp_path):
     """Without its two contact pairs the nut-side washer touches nothing that is held."""
     text = joint_ascii.read_text()
     for pair in ("plate1_washer", "washer_nut"):
-        assert f'"contact_{pair}_a"' in text
-        text = text.replace(f'"contact_{pair}_a"', f'"unpaired_{pair}_a"')
+        for side in "ab":  # both sides: one side alone is refused on its own
+            assert f'"contact_{pair}_{side}"' in text
+            text = text.replace(f'"contact_{pair}_{side}"', f'"unpaired_{pair}_{side}"')
     bad = tmp_path / "floating.msh"
     bad.write_text(text)
     expect_error(["-mesh", bad, "-modal_nev", "0"], tmp_path, "Part washer_nut", "float", "-clamp false")

@@ -42,6 +42,7 @@ PetscErrorCode BoltROMGetMatrices(BoltROM *, Mat *, Mat *);
 PetscErrorCode BoltROMDestroy(BoltROM **);
 PetscErrorCode BoltROMGetFile(BoltROM *, const char *[]);
 PetscErrorCode BoltROMGetSnapshotModes(BoltROM *, PetscInt *);
+PetscErrorCode BoltROMCheckFileIntact(BoltROM *, PetscBool *);
 PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMSetPreloadState(BoltROM *, BoltNewmark *, PetscReal);
 PetscErrorCode BoltROMCheckAtS0(BoltROM *, BoltOperator *, BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscReal *);

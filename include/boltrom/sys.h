@@ -45,6 +45,11 @@ PetscErrorCode BoltExactSumDestroy(BoltExactSum **);
 PetscErrorCode BoltGatherAll(MPI_Comm, MPI_Datatype, const void *, PetscInt, void *, PetscInt *, PetscInt *, PetscInt *);
 PetscErrorCode BoltGrowReal(PetscReal **, PetscInt *, PetscInt);
 
+/* sys/hdf5_seal.c: a checksum of a file's datasets, written into it when complete, checked before it is read */
+typedef enum { BOLT_SEAL_OK, BOLT_SEAL_NONE, BOLT_SEAL_BAD } BoltSealState;
+PetscErrorCode BoltHDF5Quiet(void);
+PetscErrorCode BoltHDF5Seal(const char[]);
+PetscErrorCode BoltHDF5CheckSeal(const char[], BoltSealState *);
 /* ------------------------------------------------------------------ sys/hdf5.c: folders, datasets */
 PetscErrorCode BoltMakeDir(MPI_Comm, const char[]);
 PetscErrorCode BoltMakeParentDir(MPI_Comm, const char[]);

@@ -17,6 +17,7 @@ struct _n_BoltLoadSet {
   char      preloadGroup[2][BOLTROM_NAME_LEN];
   PetscReal preloadAxis[3], preloadForce;
   PetscBool hasPreload;
+  PetscBool preloadAsked;  /* a nonzero preload, or its layers, given as options */
   Vec       load, preload; /* the load and preload vectors, global layout */
   Vec       loadUnit;      /* the load pattern of a 1 N force */
   char      probeGroup[BOLTROM_NAME_LEN]; /* probe: displacement component at this point group */

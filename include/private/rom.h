@@ -56,6 +56,7 @@ struct _n_BoltReductionOptions {
   BoltKrylov *krylov;       /* the Krylov basis's options (-krylov_*), owned by the ROM */
   char       file[PETSC_MAX_PATH_LEN];
   PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
+  PetscBool  rebuildSet;    /* -rom_rebuild given: a damaged file is rebuilt too */
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
   PetscBool  checkOrthogonality;
   PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */

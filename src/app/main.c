@@ -172,6 +172,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-traceback", &traceback, NULL));
   /* Errors come back as one line naming the problem; -traceback shows PETSc's full trace. */
   if (!traceback) PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  if (!traceback) PetscCall(BoltHDF5Quiet());
   ierr = BoltRunMain();
   if (!traceback) PetscCall(PetscPopErrorHandler());
   if (ierr) {

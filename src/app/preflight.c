@@ -178,6 +178,10 @@ PetscErrorCode BoltPreflightCheck(MPI_Comm comm, const BoltRunOptions *o, BoltRO
     if (romFile[0]) PetscCall(PetscTestFile(romFile, 'r', &fileThere));
     PetscCheck((o->fom && every > 0) || fileThere, comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's displacement snapshots of the same run: add -fom true -snapshot_every 1, or give a -rom_file built with them");
   }
+  if (o->rom) { /* a damaged ROM file is refused now, not after the FOM's run */
+    PetscBool damaged;
+    PetscCall(BoltROMCheckFileIntact(rom, &damaged));
+  }
   if (o->summary[0]) PetscCall(BoltMakeParentDir(comm, o->summary));
   if (o->rom && romFile[0]) PetscCall(BoltMakeParentDir(comm, romFile));
   PetscFunctionReturn(0);

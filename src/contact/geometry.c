@@ -69,11 +69,13 @@ PetscErrorCode BoltContactSetSetFromOptions(BoltContactSet *c)
   PetscFunctionReturn(0);
 }
 
-/* Pair names from the labels contact_<pair>_a on rank 0, broadcast so all ranks agree. */
+/* Pair names from the labels contact_<pair>_a on rank 0, broadcast so all ranks agree; a side b
+   whose side a is missing is named too (its pair would otherwise be dropped without a word). */
 static PetscErrorCode BoltContactFindPairs(BoltContactSet *c)
 {
   BoltMesh   *m = c->mesh;
   PetscMPIInt rank;
+  char        orphan[BOLTROM_NAME_LEN] = "";
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(BoltMeshComm(m), &rank));
@@ -89,6 +91,14 @@ static PetscErrorCode BoltContactFindPairs(BoltContactSet *c)
       PetscCall(DMGetLabelName(BoltMeshDM(m), l, &name));
       PetscCall(PetscStrlen(name, &len));
       PetscCall(PetscStrncmp(name, "contact_", 8, &pre));
+      if (pre && len >= 11 && name[len - 2] == '_' && name[len - 1] == 'b' && !orphan[0]) {
+        char      na[BOLTROM_NAME_LEN + 16];
+        PetscBool has;
+        PetscCall(PetscStrncpy(na, name, sizeof(na)));
+        na[len - 1] = 'a';
+        PetscCall(DMHasLabel(BoltMeshDM(m), na, &has));
+        if (!has) PetscCall(PetscStrncpy(orphan, name + 8, PetscMin(len - 9, sizeof(orphan))));
+      }
       if (!pre || len < 11 || name[len - 2] != '_' || name[len - 1] != 'a') continue;
       PetscCheck(c->npairs < BOLTROM_MAX_PAIRS, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "More than %d contact pairs", BOLTROM_MAX_PAIRS);
       PetscCall(PetscStrncpy(c->pairName[c->npairs], name + 8, len - 9));
@@ -97,6 +107,8 @@ static PetscErrorCode BoltContactFindPairs(BoltContactSet *c)
   }
   PetscCallMPI(MPI_Bcast(&c->npairs, 1, MPIU_INT, 0, BoltMeshComm(m)));
   PetscCallMPI(MPI_Bcast(c->pairName, BOLTROM_MAX_PAIRS * BOLTROM_NAME_LEN, MPI_CHAR, 0, BoltMeshComm(m)));
+  PetscCallMPI(MPI_Bcast(orphan, sizeof(orphan), MPI_CHAR, 0, BoltMeshComm(m)));
+  PetscCheck(!orphan[0], BoltMeshComm(m), PETSC_ERR_USER_INPUT, "Contact pair %s has side b (contact_%s_b) but no side a: add the physical surface group contact_%s_a", orphan, orphan, orphan);
   for (PetscInt p = 0; p < c->npairs; p++) {
     char      nb[BOLTROM_NAME_LEN + 16];
     PetscBool has;

@@ -27,19 +27,21 @@ PetscErrorCode BoltLoadSetCreate(BoltMesh *mesh, BoltLoadSet **ls)
 PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *l)
 {
   PetscReal nrm;
+  PetscBool set[3];
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(l->mesh->comm, NULL, "Loads", "boltrom");
   PetscCall(PetscOptionsString("-load_group", "Physical group (point or surface) that carries the external load", NULL, l->loadGroup, l->loadGroup, sizeof(l->loadGroup), NULL));
   PetscCall(BoltOptionsRealVector(PetscOptionsObject, "-load_direction", "Direction of the external load, x,y,z (normalised)", 3, l->loadDirection, NULL));
   PetscCall(PetscOptionsReal("-load_force", "Total external force [N]", NULL, l->loadForce, &l->loadForce, NULL));
-  PetscCall(PetscOptionsReal("-preload_force", "Bolt preload [N]", NULL, l->preloadForce, &l->preloadForce, NULL));
-  PetscCall(PetscOptionsString("-preload_lower_group", "Group of the lower preload layer (its nodes pulled along -preload_axis; clamped nodes take nothing)", NULL, l->preloadGroup[0], l->preloadGroup[0], sizeof(l->preloadGroup[0]), NULL));
-  PetscCall(PetscOptionsString("-preload_upper_group", "Group of the upper preload layer (its nodes pushed against -preload_axis)", NULL, l->preloadGroup[1], l->preloadGroup[1], sizeof(l->preloadGroup[1]), NULL));
+  PetscCall(PetscOptionsReal("-preload_force", "Bolt preload [N]", NULL, l->preloadForce, &l->preloadForce, &set[0]));
+  PetscCall(PetscOptionsString("-preload_lower_group", "Group of the lower preload layer (its nodes pulled along -preload_axis; clamped nodes take nothing)", NULL, l->preloadGroup[0], l->preloadGroup[0], sizeof(l->preloadGroup[0]), &set[1]));
+  PetscCall(PetscOptionsString("-preload_upper_group", "Group of the upper preload layer (its nodes pushed against -preload_axis)", NULL, l->preloadGroup[1], l->preloadGroup[1], sizeof(l->preloadGroup[1]), &set[2]));
   PetscCall(BoltOptionsRealVector(PetscOptionsObject, "-preload_axis", "Bolt axis, x,y,z, from the lower to the upper preload layer", 3, l->preloadAxis, NULL));
   PetscCall(PetscOptionsString("-probe_group", "Point group where the response is probed", NULL, l->probeGroup, l->probeGroup, sizeof(l->probeGroup), NULL));
   PetscCall(PetscOptionsInt("-probe_component", "Displacement component of the probe: 0 x, 1 y, 2 z", NULL, l->probeComponent, &l->probeComponent, NULL));
   PetscOptionsEnd();
+  l->preloadAsked = (PetscBool)((set[0] || set[1] || set[2]) && l->preloadForce != 0);
   nrm = PetscSqrtReal(PetscSqr(l->loadDirection[0]) + PetscSqr(l->loadDirection[1]) + PetscSqr(l->loadDirection[2]));
   PetscCheck(nrm > 0, l->mesh->comm, PETSC_ERR_USER_INPUT, "-load_direction must be a nonzero vector");
   for (PetscInt d = 0; d < 3; d++) l->loadDirection[d] /= nrm;
@@ -147,6 +149,10 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
     PetscReal down[3];
     PetscCall(BoltMeshHasGroup(m, l->preloadGroup[0], &hasLow));
     PetscCall(BoltMeshHasGroup(m, l->preloadGroup[1], &hasUp));
+    /* a mesh without the layers runs without a preload (the beam, the blocks), unless one is
+       asked for; one layer alone is a mesh fault */
+    PetscCheck(hasLow == hasUp, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has the preload layer '%s' but not '%s': add the missing physical group, or name the layers with -preload_lower_group and -preload_upper_group", m->filename, l->preloadGroup[hasLow ? 0 : 1], l->preloadGroup[hasLow ? 1 : 0]);
+    PetscCheck(hasLow || !l->preloadAsked, m->comm, PETSC_ERR_USER_INPUT, "-preload_force %g needs the preload layers '%s' and '%s', which mesh %s does not have: add the two physical groups, name yours with -preload_lower_group and -preload_upper_group, or give -preload_force 0", (double)l->preloadForce, l->preloadGroup[0], l->preloadGroup[1], m->filename);
     l->hasPreload = (hasLow && hasUp) ? PETSC_TRUE : PETSC_FALSE;
     if (l->hasPreload) {
       for (PetscInt d = 0; d < 3; d++) down[d] = -l->preloadAxis[d];

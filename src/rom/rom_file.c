@@ -272,6 +272,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "s0", PETSC_REAL, &rom->s0));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "offline_s", PETSC_REAL, &rom->tOffline));
   PetscCall(PetscViewerDestroy(&v));
+  if (rank == 0) PetscCall(BoltHDF5Seal(tmp)); /* complete: sealed, then given its name */
   if (rank == 0) PetscCheck(rename(tmp, file) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp, file);
   PetscCallMPI(MPI_Barrier(comm));
   PetscCall(PetscPrintf(comm, "ROM written to %s (dimension %" PetscInt_FMT ", rows at %" PetscInt_FMT " contact DOFs per rank and at %s)\n", file, n, ncd, groups));

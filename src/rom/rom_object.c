@@ -39,7 +39,7 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
   PetscCall(PetscOptionsInt("-rom_n_ccm", "Interface reduction: characteristic constraint mode vectors (0 and -rom_n_jim 0: no interface reduction)", NULL, o->nCCM, &o->nCCM, NULL));
   PetscCall(PetscOptionsInt("-rom_n_jim", "Interface reduction: joint interface mode vectors", NULL, o->nJIM, &o->nJIM, NULL));
   PetscCall(PetscOptionsBool("-rom_check_orthogonality", "Measure max |V'V - I| of the basis (costs n^2 N)", NULL, o->checkOrthogonality, &o->checkOrthogonality, NULL));
-  PetscCall(PetscOptionsBool("-rom_rebuild", "Rebuild a ROM file that does not match the scene (false: refuse)", NULL, o->rebuild, &o->rebuild, NULL));
+  PetscCall(PetscOptionsBool("-rom_rebuild", "Rebuild a ROM file that does not match the scene (false: refuse); given, a damaged one too", NULL, o->rebuild, &o->rebuild, &o->rebuildSet));
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   o->augment = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));

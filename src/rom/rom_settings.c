@@ -101,19 +101,48 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   PetscFunctionReturn(0);
 }
 
+/* Whether an existing -rom_file is damaged or cut short (its seal, checked on rank 0). Such a file
+   is rebuilt only when -rom_rebuild is given: by default a file that does not match is rebuilt,
+   but damage means that something went wrong, which the user should hear of. */
+PetscErrorCode BoltROMCheckFileIntact(BoltROM *rom, PetscBool *damaged)
+{
+  BoltReductionOptions *o    = &rom->opt;
+  BoltSealState         seal = BOLT_SEAL_OK;
+  PetscMPIInt           rank;
+  PetscBool             exists;
+
+  PetscFunctionBeginUser;
+  *damaged = PETSC_FALSE;
+  if (!o->file[0]) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(o->comm, &rank));
+  if (!rank) {
+    PetscCall(PetscTestFile(o->file, 'r', &exists));
+    if (exists) PetscCall(BoltHDF5CheckSeal(o->file, &seal));
+  }
+  PetscCallMPI(MPI_Bcast(&seal, 1, MPI_INT, 0, o->comm));
+  *damaged = (PetscBool)(seal == BOLT_SEAL_BAD);
+  PetscCheck(!*damaged || (o->rebuild && o->rebuildSet), o->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged or cut short (it cannot be read through, or its data do not match the checksum written with it): rebuild it with -rom_rebuild true, or remove it", o->file);
+  PetscFunctionReturn(0);
+}
+
 /* Reads -rom_file into rom when the file exists and its fingerprint matches (*reused); else an
    error, or a note that it is rebuilt (-rom_rebuild). */
 PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0, PetscBool *reused)
 {
   BoltReductionOptions *o = &rom->opt;
   PetscLogDouble        t3;
-  PetscBool             exists;
+  PetscBool             exists, damaged;
   char                  why[256];
 
   PetscFunctionBeginUser;
   *reused = PETSC_FALSE;
   PetscCall(PetscTestFile(o->file, 'r', &exists));
   if (!exists) PetscFunctionReturn(0);
+  PetscCall(BoltROMCheckFileIntact(rom, &damaged));
+  if (damaged) {
+    PetscCall(PetscPrintf(o->comm, "ROM file %s is damaged or cut short: rebuilding it, as asked\n", o->file));
+    PetscFunctionReturn(0);
+  }
   PetscCall(BoltROMLoad(o->file, rom, contact, loads, reused, why, sizeof(why)));
   if (*reused) {
     PetscCall(PetscTime(&t3));

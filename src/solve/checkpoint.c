@@ -142,6 +142,7 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   /* rename once every rank has closed the file: a run killed before this point leaves the
      previous checkpoint complete */
   PetscCallMPI(MPI_Barrier(comm));
+  if (!rank) PetscCall(BoltHDF5Seal(tmp));
   if (!rank) PetscCheck(rename(tmp, file) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp, file);
   PetscFunctionReturn(0);
 }
@@ -170,6 +171,14 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
     PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart: there is no checkpoint %s; write one first with -checkpoint_every N (and the same -checkpoint_file)", file);
     PetscCall(PetscPrintf(comm, "%s: no checkpoint %s: starting at step 0\n", op->name, file));
     PetscFunctionReturn(0);
+  }
+  {
+    BoltSealState seal = BOLT_SEAL_OK;
+    PetscMPIInt   rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (!rank) PetscCall(BoltHDF5CheckSeal(file, &seal));
+    PetscCallMPI(MPI_Bcast(&seal, 1, MPI_INT, 0, comm));
+    PetscCheck(seal != BOLT_SEAL_BAD, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart: the checkpoint %s is damaged or cut short (it cannot be read through, or its data do not match the checksum written with it): remove it and run again from the start (or from a copy of an intact checkpoint)", file);
   }
   PetscCall(BoltCheckpointFingerprint(nm, fp, sizeof(fp)));
   PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));
