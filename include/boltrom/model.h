@@ -100,5 +100,7 @@ PetscErrorCode BoltRigidProject(BV, Vec);
 PetscErrorCode BoltRigidFrequencies(BV, Mat, PetscReal[6]);
 PetscReal      BoltRigidShift(void);
 PetscErrorCode BoltStaticSolveFree(Mat, Mat, BV, Vec, Vec, const char[], PetscInt *);
+/* bolt_tension.c: the clamp force read from the stud beyond the preload layers */
+PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *, Mat, Vec, Vec, PetscReal *);
 
 #endif

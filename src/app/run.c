@@ -154,6 +154,12 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
     PetscCall(BoltNewmarkGetStaticSolve(r->fomNm, &outer, &inner));
     PetscCall(BoltDualGetLastConvergence(dual, &s->preloadPenetration, &s->preloadChange));
     if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, q, outer, inner, &r->fomPreload)); /* the ROM's offline phase starts from it */
+    if (BoltLoadSetHasPreload(r->loads)) { /* the clamp force read from the stud, not from the contact forces */
+      Mat K;
+      PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, NULL));
+      PetscCall(BoltLoadSetStudTension(r->loads, K, q, BoltOperatorPreloadVec(r->fomOp), &s->studTension));
+      PetscCall(PetscPrintf(r->comm, "  stud tension beyond the preload layers: %.1f N\n", (double)s->studTension));
+    }
   }
   PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));
   PetscCall(BoltNewmarkRun(r->fomNm));

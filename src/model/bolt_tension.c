@@ -1,0 +1,85 @@
+/* The clamp force of the bolt, read from a displacement: the axial force its stud carries beyond
+   the two preload layers. The layers take the applied force F; the element layer between them is
+   squeezed and holds part of it back; the rest, T, stretches the stud and clamps the joint. Summed
+   over the upper layer's nodes (its equilibrium, projected on the axis a):
+   T = sum a . (K_L u - f), K_L the stiffness of the cells between the layers alone and f the
+   applied preload. This does not use the contact forces, so it checks the calibration, which
+   does. */
+#include "private/model.h"
+
+/* A matrix of K's layout holding only the cells whose eight vertices all lie in the two layers. */
+static PetscErrorCode LayerStiffness(BoltLoadSet *l, Mat K, Mat *KL, PetscInt *ncells)
+{
+  BoltMesh *m = l->mesh;
+  PetscInt  nlow, nup, *low, *up, local = 0;
+  PetscBT   inLayer;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltMeshGroupVertices(m, l->preloadGroup[0], PETSC_FALSE, &nlow, &low));
+  PetscCall(BoltMeshGroupVertices(m, l->preloadGroup[1], PETSC_FALSE, &nup, &up));
+  PetscCall(PetscBTCreate(m->vEnd - m->vStart, &inLayer));
+  for (PetscInt k = 0; k < nlow; k++) PetscCall(PetscBTSet(inLayer, low[k] - m->vStart));
+  for (PetscInt k = 0; k < nup; k++) PetscCall(PetscBTSet(inLayer, up[k] - m->vStart));
+  PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, KL));
+  PetscCall(MatZeroEntries(*KL));
+  for (PetscInt c = m->cStart; c < m->cEnd; c++) {
+    const BoltMaterial *mat = &m->materials->mat[m->partMaterial[m->cellPart[c - m->cStart]]];
+    PetscInt            verts[8], idx[24];
+    PetscReal           X[24], Ke[576];
+    PetscScalar         Ks[576];
+    PetscBool           all = PETSC_TRUE;
+
+    PetscCall(BoltMeshCellVertices(m, c, verts));
+    for (PetscInt a = 0; a < 8 && all; a++) all = PetscBTLookup(inLayer, verts[a] - m->vStart) ? PETSC_TRUE : PETSC_FALSE;
+    if (!all) continue;
+    PetscCall(BoltMeshCellCoordinates(m, c, X));
+    PetscCall(BoltMeshCellDofs(m, c, idx));
+    PetscCall(Hex8Stiffness(X, mat->E, mat->nu, m->formulation, Ke));
+    for (PetscInt k = 0; k < 576; k++) Ks[k] = Ke[k];
+    PetscCall(MatSetValues(*KL, 24, idx, 24, idx, Ks, ADD_VALUES));
+    local++;
+  }
+  PetscCall(MatAssemblyBegin(*KL, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*KL, MAT_FINAL_ASSEMBLY));
+  PetscCall(MPIU_Allreduce(&local, ncells, 1, MPIU_INT, MPI_SUM, m->comm));
+  PetscCall(PetscBTDestroy(&inLayer));
+  PetscCall(PetscFree(low));
+  PetscCall(PetscFree(up));
+  PetscFunctionReturn(0);
+}
+
+/* The stud's tension T [N] under the displacement u and the applied preload f (K: the structural
+   stiffness, for its layout). Collective. */
+PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *l, Mat K, Vec u, Vec f, PetscReal *T)
+{
+  BoltMesh          *m = l->mesh;
+  Mat                KL;
+  Vec                y;
+  PetscInt           ncells, nup, *up, rstart;
+  PetscReal          local = 0;
+  const PetscScalar *ya, *fa;
+
+  PetscFunctionBeginUser;
+  PetscCheck(l->hasPreload, m->comm, PETSC_ERR_ARG_WRONGSTATE, "The stud tension needs the preload layers");
+  PetscCall(LayerStiffness(l, K, &KL, &ncells));
+  PetscCheck(ncells > 0, m->comm, PETSC_ERR_USER_INPUT, "No hexahedron has all its nodes in the preload layers '%s' and '%s': they must bound one element layer of the stud", l->preloadGroup[0], l->preloadGroup[1]);
+  PetscCall(VecDuplicate(u, &y));
+  PetscCall(MatMult(KL, u, y));
+  PetscCall(VecGetOwnershipRange(y, &rstart, NULL));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(VecGetArrayRead(f, &fa));
+  PetscCall(BoltMeshGroupVertices(m, l->preloadGroup[1], PETSC_TRUE, &nup, &up));
+  for (PetscInt k = 0; k < nup; k++) {
+    PetscInt idx[3];
+    PetscCall(BoltMeshVertexDofs(m, up[k], idx));
+    for (PetscInt d = 0; d < 3; d++)
+      if (idx[d] >= 0) local += l->preloadAxis[d] * PetscRealPart(ya[idx[d] - rstart] - fa[idx[d] - rstart]);
+  }
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscCall(VecRestoreArrayRead(f, &fa));
+  PetscCall(MPIU_Allreduce(&local, T, 1, MPIU_REAL, MPI_SUM, m->comm));
+  PetscCall(PetscFree(up));
+  PetscCall(VecDestroy(&y));
+  PetscCall(MatDestroy(&KL));
+  PetscFunctionReturn(0);
+}
