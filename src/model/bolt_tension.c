@@ -20,8 +20,13 @@ static PetscErrorCode LayerStiffness(BoltLoadSet *l, Mat K, Mat *KL, PetscInt *n
   PetscCall(PetscBTCreate(m->vEnd - m->vStart, &inLayer));
   for (PetscInt k = 0; k < nlow; k++) PetscCall(PetscBTSet(inLayer, low[k] - m->vStart));
   for (PetscInt k = 0; k < nup; k++) PetscCall(PetscBTSet(inLayer, up[k] - m->vStart));
-  PetscCall(MatDuplicate(K, MAT_DO_NOT_COPY_VALUES, KL));
-  PetscCall(MatZeroEntries(*KL));
+  { /* K's layout, storage only for the few rows of the layer (not a copy of K's pattern) */
+    PetscInt mloc, nloc, M, N;
+    PetscCall(MatGetLocalSize(K, &mloc, &nloc));
+    PetscCall(MatGetSize(K, &M, &N));
+    PetscCall(MatCreateAIJ(m->comm, mloc, nloc, M, N, 0, NULL, 0, NULL, KL));
+    PetscCall(MatSetOption(*KL, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  }
   for (PetscInt c = m->cStart; c < m->cEnd; c++) {
     const BoltMaterial *mat = &m->materials->mat[m->partMaterial[m->cellPart[c - m->cStart]]];
     PetscInt            verts[8], idx[24];
