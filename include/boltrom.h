@@ -11,6 +11,7 @@
 
 #define BOLTROM_MAX_PARTS 32
 #define BOLTROM_MAX_PAIRS 32
+#define BOLTROM_MAX_BOLTS 16
 #define BOLTROM_NAME_LEN  128
 
 /* sys/json.c: the run summary's writer, which every module may write its keys to */

@@ -498,6 +498,49 @@ def build_joint(level=1.0, n_theta=None):
     return mesh
 
 
+def build_joint2(level=1.0, n_theta=None):
+    """Two bolts in one lap joint: the reference joint and a copy of it beside it (+y, one plate
+    width over), the plates joined along their seam into plates twice as wide. Each bolt keeps
+    its own head, washers, nut and preload layers (preload_1_*, preload_2_*); the contact pairs
+    span both bolts; the clamp is the whole plate1 end; the load and corner points are the first
+    joint's, the load point of the second is load_point_2."""
+    one = build_joint(level, n_theta)
+    pitch = JOINT["plate_width"]
+    n0 = len(one.coords)
+    X2 = one.coords + np.array([0.0, pitch, 0.0])
+    new = np.arange(n0, 2 * n0)  # copy node i -> n0 + i, unless it joins a plate node
+    for part in ("plate1", "plate2"):
+        nodes = np.unique(one.parts[part])
+        key = {tuple(k): i for k, i in zip(np.round(one.coords[nodes] / QUANTUM).astype(np.int64), nodes)}
+        for i, k in zip(nodes, np.round(X2[nodes] / QUANTUM).astype(np.int64)):
+            j = key.get(tuple(k))
+            if j is not None:
+                new[i] = j
+    keep = new >= n0
+    remap = np.full(2 * n0, -1, dtype=np.int64)
+    remap[:n0] = np.arange(n0)
+    remap[n0:][keep] = n0 + np.arange(keep.sum())
+    remap[n0:][~keep] = new[~keep]
+    mesh = HexMesh("joint2", level)
+    mesh.coords = np.concatenate([one.coords, X2[keep]])
+    second = lambda E: remap[n0 + E]  # noqa: E731
+    for name, H in one.parts.items():
+        mesh.parts[name] = np.concatenate([H, second(H)])
+    for name, F in one.surfaces.items():
+        if name.startswith("preload_"):
+            mesh.surfaces[name.replace("preload_", "preload_1_")] = F
+            mesh.surfaces[name.replace("preload_", "preload_2_")] = second(F)
+        else:
+            mesh.surfaces[name] = np.concatenate([F, second(F)])
+    mesh.pairs = list(one.pairs)
+    mesh.points = dict(one.points)
+    mesh.points["load_point_2"] = int(second(np.array([one.points["load_point"]]))[0])
+    mesh.info = dict(one.info, bolts=2, bolt_y=[JOINT["bolt_y"], JOINT["bolt_y"] + pitch],
+                     seam_nodes=int((~keep).sum()))
+    mesh.finish()
+    return mesh
+
+
 def find_node(mesh, part, xyz):
     nodes = np.unique(mesh.parts[part])
     d = np.abs(mesh.coords[nodes] - np.asarray(xyz)).max(axis=1)
@@ -615,8 +658,8 @@ def build_punch(level=1.0, eccentricity=None, layer_t=None):
 
 
 def build(kind="joint", level=1.0, **kw):
-    builders = dict(joint=build_joint, beam=build_beam, block=build_block, blocks=build_blocks,
-                    punch=build_punch)
+    builders = dict(joint=build_joint, joint2=build_joint2, beam=build_beam, block=build_block,
+                    blocks=build_blocks, punch=build_punch)
     if kind not in builders:
         raise ValueError("unknown kind %r" % kind)
     return builders[kind](level=level, **{k: v for k, v in kw.items() if v is not None})
@@ -770,7 +813,7 @@ def main(argv=None):
         prog="mesh-joint",
         description="All-hex meshes for boltrom (gmsh MSH 4.1). See python/boltrom_mesh.py "
                     "for the physical-group contract.")
-    ap.add_argument("--kind", choices=("joint", "beam", "block", "blocks", "punch"), default="joint")
+    ap.add_argument("--kind", choices=("joint", "joint2", "beam", "block", "blocks", "punch"), default="joint")
     ap.add_argument("--level", type=float, default=1.0,
                     help="refinement level (float; node layers scale by about LEVEL)")
     ap.add_argument("--output", "-o", required=True, help="output .msh file")

@@ -84,3 +84,15 @@ def test_non_hexahedral_part_and_unreadable_file(tmp_path):
         gmsh.finalize()
     rc, out = run(path)
     assert rc == 1 and any(p.startswith("part block holds tetrahedra") for p in problems(out)), out
+
+
+def test_two_bolt_joint_and_a_bolt_without_its_upper_layer(tmp_path):
+    m = bm.build_joint2(0.5)
+    path = tmp_path / "joint2.msh"
+    bm.write_msh(m, str(path))
+    rc, out = run(path)
+    assert rc == 0 and "run with -preload_bolts 1,2" in out, out
+    del m.surfaces["preload_2_upper"]
+    bm.write_msh(m, str(path))
+    rc, out = run(path)
+    assert rc == 1 and problems(out) == ["preload layer 'preload_2_upper' is missing (its partner 'preload_2_lower' is there): add it"], out

@@ -101,6 +101,10 @@ PetscErrorCode BoltRigidFrequencies(BV, Mat, PetscReal[6]);
 PetscReal      BoltRigidShift(void);
 PetscErrorCode BoltStaticSolveFree(Mat, Mat, BV, Vec, Vec, const char[], PetscInt *);
 /* bolt_tension.c: the clamp force read from the stud beyond the preload layers */
-PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *, Mat, Vec, Vec, PetscReal *);
+PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *, PetscInt, Mat, Vec, Vec, PetscReal *);
+PetscInt       BoltLoadSetBoltCount(const BoltLoadSet *);
+const char    *BoltLoadSetBoltName(const BoltLoadSet *, PetscInt);
+PetscReal      BoltLoadSetBoltForce(const BoltLoadSet *, PetscInt);
+Vec            BoltLoadSetBoltUnit(const BoltLoadSet *, PetscInt);
 
 #endif

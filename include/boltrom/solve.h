@@ -96,6 +96,7 @@ PetscErrorCode BoltNewmarkReleaseSolver(BoltNewmark *);
 PetscErrorCode BoltNewmarkDestroy(BoltNewmark **);
 PetscErrorCode BoltNewmarkKeepGivenPreload(BoltNewmark *);
 PetscErrorCode BoltNewmarkSetRigidModes(BoltNewmark *, BV);
+PetscErrorCode BoltNewmarkSetBolts(BoltNewmark *, BoltLoadSet *);
 PetscErrorCode BoltNewmarkSetPreloadTarget(BoltNewmark *, PetscReal);
 /* newmark_results.c: what a run hands the rest of the program (read-only) */
 typedef enum { BOLT_HISTORY_TIME, BOLT_HISTORY_PROBE, BOLT_HISTORY_ENERGY, BOLT_HISTORY_SLIPPING, BOLT_HISTORY_DISSIPATED, BOLT_HISTORY_LEDGER, BOLT_HISTORY_PAIR_FORCE } BoltHistory;

@@ -18,6 +18,13 @@ struct _n_BoltLoadSet {
   PetscReal preloadAxis[3], preloadForce;
   PetscBool hasPreload;
   PetscBool preloadAsked;  /* a nonzero preload, or its layers, given as options */
+  /* -preload_bolts: several bolts, bolt b's layers preload_<name>_lower/_upper and its force
+     (-preload_<name>_force); none: the one bolt of -preload_lower_group/-preload_upper_group */
+  PetscInt  nbolts;
+  char      boltName[BOLTROM_MAX_BOLTS][BOLTROM_NAME_LEN];
+  char      boltGroup[BOLTROM_MAX_BOLTS][2][BOLTROM_NAME_LEN];
+  PetscReal boltForce[BOLTROM_MAX_BOLTS];
+  Vec       boltUnit[BOLTROM_MAX_BOLTS]; /* bolt b's layer pattern for 1 N */
   Vec       load, preload; /* the load and preload vectors, global layout */
   Vec       loadUnit;      /* the load pattern of a 1 N force */
   char      probeGroup[BOLTROM_NAME_LEN]; /* probe: displacement component at this point group */

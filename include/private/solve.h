@@ -107,6 +107,9 @@ struct _n_BoltNewmark {
   PetscReal       sweepStart; /* -load_sweep_start: the stepped sine's first-cycle amplitude, a fraction of the load */
   PetscBool       monitor;
   PetscBool       staticWithLoad; /* the static contact solve carries the external load too */
+  BoltLoadSet    *bolts;          /* -preload_bolts: each bolt calibrated from its stud (preload_bolts.c); or NULL */
+  PetscReal       boltLayerForce[BOLTROM_MAX_BOLTS], boltTension[BOLTROM_MAX_BOLTS];
+  PetscInt        boltPasses;     /* static solves the bolts' calibration took */
   PetscBool       quasiStatic;    /* -ts_quasistatic: steps without inertia or damping */
   PetscBool       calibratePreload;
   BV              rigid; /* a free model's rigid motions (global layout), taken out of the preloaded state; or NULL */
@@ -141,5 +144,9 @@ struct _n_BoltNewmark {
 /* dual_check.c: every node pair checked after each converged transient step */
 PetscErrorCode BoltDualCheckStep(BoltDual *, Vec);
 PetscErrorCode BoltDualCheckSummaryWrite(BoltDual *, BoltJSON *);
+
+/* preload_bolts.c: several bolts, each calibrated to its own clamp force */
+PetscErrorCode BoltNewmarkPreloadBolts(BoltNewmark *, PetscInt *, PetscInt *);
+PetscErrorCode BoltNewmarkBoltsSummaryWrite(BoltNewmark *, BoltJSON *);
 
 #endif

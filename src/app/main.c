@@ -19,6 +19,7 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscCall(BoltContactSetSetFromOptions(r->contact));
   PetscCall(BoltLoadSetCreate(r->mesh, &r->loads));
   PetscCall(BoltLoadSetSetFromOptions(r->loads));
+  PetscCheck(!r->opt.rom || !BoltLoadSetBoltCount(r->loads), r->comm, PETSC_ERR_SUP, "The reduced model of several bolts (-preload_bolts) is not available yet (it keeps one preload input): run the full model alone with -rom false");
   PetscCall(BoltROMCreate(r->comm, &r->rom));
   PetscCall(BoltROMSetFromOptions(r->rom));
   if (r->opt.rom) PetscCall(BoltROMCheckOptions(r->rom, r->contact));

@@ -115,6 +115,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscFunctionBeginUser;
   PetscCall(BoltFOMCreate(r->asmb, contact, r->loads, PETSC_TRUE, &r->fomOp));
   PetscCall(BoltRunNewmarkCreate(r, r->fomOp, &r->fomNm));
+  PetscCall(BoltNewmarkSetBolts(r->fomNm, r->loads));
   if (BoltMeshIsFree(r->mesh)) {
     BV R;
     PetscCall(BoltAssemblerRigidModes(r->asmb, &R));
@@ -154,10 +155,10 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
     PetscCall(BoltNewmarkGetStaticSolve(r->fomNm, &outer, &inner));
     PetscCall(BoltDualGetLastConvergence(dual, &s->preloadPenetration, &s->preloadChange));
     if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, q, outer, inner, &r->fomPreload)); /* the ROM's offline phase starts from it */
-    if (BoltLoadSetHasPreload(r->loads)) { /* the clamp force read from the stud, not from the contact forces */
+    if (BoltLoadSetHasPreload(r->loads) && !BoltLoadSetBoltCount(r->loads)) { /* the clamp force read from the stud, not from the contact forces */
       Mat K;
       PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, NULL));
-      PetscCall(BoltLoadSetStudTension(r->loads, K, q, BoltOperatorPreloadVec(r->fomOp), &s->studTension));
+      PetscCall(BoltLoadSetStudTension(r->loads, 0, K, q, BoltOperatorPreloadVec(r->fomOp), &s->studTension));
       PetscCall(PetscPrintf(r->comm, "  stud tension beyond the preload layers: %.1f N\n", (double)s->studTension));
     }
   }

@@ -8,15 +8,15 @@
 #include "private/model.h"
 
 /* A matrix of K's layout holding only the cells whose eight vertices all lie in the two layers. */
-static PetscErrorCode LayerStiffness(BoltLoadSet *l, Mat K, Mat *KL, PetscInt *ncells)
+static PetscErrorCode LayerStiffness(BoltLoadSet *l, const char lower[], const char upper[], Mat K, Mat *KL, PetscInt *ncells)
 {
   BoltMesh *m = l->mesh;
   PetscInt  nlow, nup, *low, *up, local = 0;
   PetscBT   inLayer;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltMeshGroupVertices(m, l->preloadGroup[0], PETSC_FALSE, &nlow, &low));
-  PetscCall(BoltMeshGroupVertices(m, l->preloadGroup[1], PETSC_FALSE, &nup, &up));
+  PetscCall(BoltMeshGroupVertices(m, lower, PETSC_FALSE, &nlow, &low));
+  PetscCall(BoltMeshGroupVertices(m, upper, PETSC_FALSE, &nup, &up));
   PetscCall(PetscBTCreate(m->vEnd - m->vStart, &inLayer));
   for (PetscInt k = 0; k < nlow; k++) PetscCall(PetscBTSet(inLayer, low[k] - m->vStart));
   for (PetscInt k = 0; k < nup; k++) PetscCall(PetscBTSet(inLayer, up[k] - m->vStart));
@@ -53,9 +53,10 @@ static PetscErrorCode LayerStiffness(BoltLoadSet *l, Mat K, Mat *KL, PetscInt *n
   PetscFunctionReturn(0);
 }
 
-/* The stud's tension T [N] under the displacement u and the applied preload f (K: the structural
-   stiffness, for its layout). Collective. */
-PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *l, Mat K, Vec u, Vec f, PetscReal *T)
+/* The tension T [N] of bolt b's stud (b: an index of -preload_bolts, or 0 for the one bolt)
+   under the displacement u and the applied preload f (K: the structural stiffness, for its
+   layout). Collective. */
+PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *l, PetscInt b, Mat K, Vec u, Vec f, PetscReal *T)
 {
   BoltMesh          *m = l->mesh;
   Mat                KL;
@@ -65,15 +66,17 @@ PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *l, Mat K, Vec u, Vec f, Petsc
   const PetscScalar *ya, *fa;
 
   PetscFunctionBeginUser;
-  PetscCheck(l->hasPreload, m->comm, PETSC_ERR_ARG_WRONGSTATE, "The stud tension needs the preload layers");
-  PetscCall(LayerStiffness(l, K, &KL, &ncells));
-  PetscCheck(ncells > 0, m->comm, PETSC_ERR_USER_INPUT, "No hexahedron has all its nodes in the preload layers '%s' and '%s': they must bound one element layer of the stud", l->preloadGroup[0], l->preloadGroup[1]);
+  const char        *lower = l->nbolts ? l->boltGroup[b][0] : l->preloadGroup[0], *upper = l->nbolts ? l->boltGroup[b][1] : l->preloadGroup[1];
+
+  PetscCheck(l->hasPreload && b >= 0 && b < PetscMax(l->nbolts, 1), m->comm, PETSC_ERR_ARG_OUTOFRANGE, "No bolt %" PetscInt_FMT " with preload layers", b);
+  PetscCall(LayerStiffness(l, lower, upper, K, &KL, &ncells));
+  PetscCheck(ncells > 0, m->comm, PETSC_ERR_USER_INPUT, "No hexahedron has all its nodes in the preload layers '%s' and '%s': they must bound one element layer of the stud", lower, upper);
   PetscCall(VecDuplicate(u, &y));
   PetscCall(MatMult(KL, u, y));
   PetscCall(VecGetOwnershipRange(y, &rstart, NULL));
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(VecGetArrayRead(f, &fa));
-  PetscCall(BoltMeshGroupVertices(m, l->preloadGroup[1], PETSC_TRUE, &nup, &up));
+  PetscCall(BoltMeshGroupVertices(m, upper, PETSC_TRUE, &nup, &up));
   for (PetscInt k = 0; k < nup; k++) {
     PetscInt idx[3];
     PetscCall(BoltMeshVertexDofs(m, up[k], idx));

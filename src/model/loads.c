@@ -27,7 +27,7 @@ PetscErrorCode BoltLoadSetCreate(BoltMesh *mesh, BoltLoadSet **ls)
 PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *l)
 {
   PetscReal nrm;
-  PetscBool set[3];
+  PetscBool set[4];
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(l->mesh->comm, NULL, "Loads", "boltrom");
@@ -38,10 +38,28 @@ PetscErrorCode BoltLoadSetSetFromOptions(BoltLoadSet *l)
   PetscCall(PetscOptionsString("-preload_lower_group", "Group of the lower preload layer (its nodes pulled along -preload_axis; clamped nodes take nothing)", NULL, l->preloadGroup[0], l->preloadGroup[0], sizeof(l->preloadGroup[0]), &set[1]));
   PetscCall(PetscOptionsString("-preload_upper_group", "Group of the upper preload layer (its nodes pushed against -preload_axis)", NULL, l->preloadGroup[1], l->preloadGroup[1], sizeof(l->preloadGroup[1]), &set[2]));
   PetscCall(BoltOptionsRealVector(PetscOptionsObject, "-preload_axis", "Bolt axis, x,y,z, from the lower to the upper preload layer", 3, l->preloadAxis, NULL));
+  {
+    char    *names[BOLTROM_MAX_BOLTS];
+    PetscInt n = BOLTROM_MAX_BOLTS;
+    PetscCall(PetscOptionsStringArray("-preload_bolts", "Several bolts: names, comma-separated; bolt B: layer groups preload_B_lower and _upper, clamp force -preload_B_force (default -preload_force)", NULL, names, &n, &set[3]));
+    l->nbolts = set[3] ? n : 0;
+    for (PetscInt b = 0; b < l->nbolts; b++) {
+      char opt[BOLTROM_NAME_LEN + 32];
+      PetscCall(PetscStrncpy(l->boltName[b], names[b], sizeof(l->boltName[b])));
+      PetscCall(PetscFree(names[b]));
+      PetscCall(PetscSNPrintf(l->boltGroup[b][0], sizeof(l->boltGroup[b][0]), "preload_%s_lower", l->boltName[b]));
+      PetscCall(PetscSNPrintf(l->boltGroup[b][1], sizeof(l->boltGroup[b][1]), "preload_%s_upper", l->boltName[b]));
+      PetscCall(PetscSNPrintf(opt, sizeof(opt), "-preload_%s_force", l->boltName[b]));
+      l->boltForce[b] = l->preloadForce;
+      PetscCall(PetscOptionsReal(opt, "Clamp force of this bolt [N] (default -preload_force)", NULL, l->boltForce[b], &l->boltForce[b], NULL));
+    }
+  }
   PetscCall(PetscOptionsString("-probe_group", "Point group where the response is probed", NULL, l->probeGroup, l->probeGroup, sizeof(l->probeGroup), NULL));
   PetscCall(PetscOptionsInt("-probe_component", "Displacement component of the probe: 0 x, 1 y, 2 z", NULL, l->probeComponent, &l->probeComponent, NULL));
   PetscOptionsEnd();
-  l->preloadAsked = (PetscBool)((set[0] || set[1] || set[2]) && l->preloadForce != 0);
+  PetscCheck(!set[3] || l->nbolts > 0, l->mesh->comm, PETSC_ERR_USER_INPUT, "-preload_bolts needs the bolts' names, e.g. -preload_bolts 1,2");
+  PetscCheck(!l->nbolts || !(set[1] || set[2]), l->mesh->comm, PETSC_ERR_USER_INPUT, "-preload_bolts names each bolt's layers (preload_<name>_lower/_upper): drop -preload_lower_group and -preload_upper_group");
+  l->preloadAsked = (PetscBool)((set[0] || set[1] || set[2] || l->nbolts) && l->preloadForce != 0);
   nrm = PetscSqrtReal(PetscSqr(l->loadDirection[0]) + PetscSqr(l->loadDirection[1]) + PetscSqr(l->loadDirection[2]));
   PetscCheck(nrm > 0, l->mesh->comm, PETSC_ERR_USER_INPUT, "-load_direction must be a nonzero vector");
   for (PetscInt d = 0; d < 3; d++) l->loadDirection[d] /= nrm;
@@ -107,6 +125,50 @@ static PetscErrorCode BoltLoadFaces(BoltMesh *m, PetscInt nfaces, const PetscInt
   PetscFunctionReturn(0);
 }
 
+/* The preload: each bolt's two layers pulled together along the axis, so the stud between them
+   is shortened. One bolt (its layers -preload_lower_group / -preload_upper_group), or the bolts of
+   -preload_bolts, each with its own layers and force and a 1 N pattern of its own. */
+static PetscErrorCode BoltLoadSetSetUpPreload(BoltLoadSet *l, Vec layout)
+{
+  BoltMesh *m = l->mesh;
+  PetscInt  n;
+  PetscReal down[3];
+
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < 3; d++) down[d] = -l->preloadAxis[d];
+  if (l->nbolts) {
+    for (PetscInt b = 0; b < l->nbolts; b++) {
+      for (PetscInt side = 0; side < 2; side++) {
+        PetscBool has;
+        PetscCall(BoltMeshHasGroup(m, l->boltGroup[b][side], &has));
+        PetscCheck(has, m->comm, PETSC_ERR_USER_INPUT, "Bolt %s of -preload_bolts needs the preload layer '%s', which mesh %s does not have: add the physical group, or correct the bolt's name", l->boltName[b], l->boltGroup[b][side], m->filename);
+      }
+      PetscCall(VecDuplicate(layout, &l->boltUnit[b]));
+      PetscCall(VecZeroEntries(l->boltUnit[b]));
+      PetscCall(BoltLoadSpread(m, l->boltGroup[b][0], l->preloadAxis, 1.0, l->boltUnit[b], &n));
+      PetscCall(BoltLoadSpread(m, l->boltGroup[b][1], down, 1.0, l->boltUnit[b], &n));
+      PetscCall(VecAXPY(l->preload, l->boltForce[b], l->boltUnit[b]));
+    }
+    l->hasPreload = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  {
+    PetscBool hasLow, hasUp;
+    PetscCall(BoltMeshHasGroup(m, l->preloadGroup[0], &hasLow));
+    PetscCall(BoltMeshHasGroup(m, l->preloadGroup[1], &hasUp));
+    /* a mesh without the layers runs without a preload (the beam, the blocks), unless one is
+       asked for; one layer alone is a mesh fault */
+    PetscCheck(hasLow == hasUp, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has the preload layer '%s' but not '%s': add the missing physical group, or name the layers with -preload_lower_group and -preload_upper_group", m->filename, l->preloadGroup[hasLow ? 0 : 1], l->preloadGroup[hasLow ? 1 : 0]);
+    PetscCheck(hasLow || !l->preloadAsked, m->comm, PETSC_ERR_USER_INPUT, "-preload_force %g needs the preload layers '%s' and '%s', which mesh %s does not have: add the two physical groups, name yours with -preload_lower_group and -preload_upper_group, or give -preload_force 0", (double)l->preloadForce, l->preloadGroup[0], l->preloadGroup[1], m->filename);
+    l->hasPreload = (hasLow && hasUp) ? PETSC_TRUE : PETSC_FALSE;
+    if (l->hasPreload) {
+      PetscCall(BoltLoadSpread(m, l->preloadGroup[0], l->preloadAxis, l->preloadForce, l->preload, &n));
+      PetscCall(BoltLoadSpread(m, l->preloadGroup[1], down, l->preloadForce, l->preload, &n));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
 {
   BoltMesh *m = l->mesh;
@@ -143,23 +205,7 @@ PetscErrorCode BoltLoadSetSetUp(BoltLoadSet *l, Vec layout)
   }
   PetscCall(VecAXPY(l->load, l->loadForce, l->loadUnit));
   PetscCall(PetscFree(faces));
-  /* preload: pulls the two layers together, so the stud between them is shortened */
-  {
-    PetscBool hasLow, hasUp;
-    PetscReal down[3];
-    PetscCall(BoltMeshHasGroup(m, l->preloadGroup[0], &hasLow));
-    PetscCall(BoltMeshHasGroup(m, l->preloadGroup[1], &hasUp));
-    /* a mesh without the layers runs without a preload (the beam, the blocks), unless one is
-       asked for; one layer alone is a mesh fault */
-    PetscCheck(hasLow == hasUp, m->comm, PETSC_ERR_USER_INPUT, "Mesh %s has the preload layer '%s' but not '%s': add the missing physical group, or name the layers with -preload_lower_group and -preload_upper_group", m->filename, l->preloadGroup[hasLow ? 0 : 1], l->preloadGroup[hasLow ? 1 : 0]);
-    PetscCheck(hasLow || !l->preloadAsked, m->comm, PETSC_ERR_USER_INPUT, "-preload_force %g needs the preload layers '%s' and '%s', which mesh %s does not have: add the two physical groups, name yours with -preload_lower_group and -preload_upper_group, or give -preload_force 0", (double)l->preloadForce, l->preloadGroup[0], l->preloadGroup[1], m->filename);
-    l->hasPreload = (hasLow && hasUp) ? PETSC_TRUE : PETSC_FALSE;
-    if (l->hasPreload) {
-      for (PetscInt d = 0; d < 3; d++) down[d] = -l->preloadAxis[d];
-      PetscCall(BoltLoadSpread(m, l->preloadGroup[0], l->preloadAxis, l->preloadForce, l->preload, &n));
-      PetscCall(BoltLoadSpread(m, l->preloadGroup[1], down, l->preloadForce, l->preload, &n));
-    }
-  }
+  PetscCall(BoltLoadSetSetUpPreload(l, layout));
   /* probe */
   PetscCall(BoltMeshGroupVertices(m, l->probeGroup, PETSC_TRUE, &nv, &verts));
   PetscCall(MPIU_Allreduce(&nv, &n, 1, MPIU_INT, MPI_SUM, m->comm));
@@ -227,6 +273,7 @@ PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **ls)
   PetscCall(VecDestroy(&(*ls)->load));
   PetscCall(VecDestroy(&(*ls)->loadUnit));
   PetscCall(VecDestroy(&(*ls)->preload));
+  for (PetscInt b = 0; b < (*ls)->nbolts; b++) PetscCall(VecDestroy(&(*ls)->boltUnit[b]));
   PetscCall(PetscFree(*ls));
   PetscFunctionReturn(0);
 }

@@ -54,3 +54,22 @@ const PetscReal *BoltLoadSetProbeCoordinates(const BoltLoadSet *l)
 {
   return l->probeCoord;
 }
+
+/* The bolts of -preload_bolts (0 for the one bolt of -preload_lower_group/_upper_group): their
+   names, clamp forces [N] and 1 N layer patterns (the preload is the sum of force x pattern). */
+PetscInt BoltLoadSetBoltCount(const BoltLoadSet *l)
+{
+  return l->nbolts;
+}
+const char *BoltLoadSetBoltName(const BoltLoadSet *l, PetscInt b)
+{
+  return l->boltName[b];
+}
+PetscReal BoltLoadSetBoltForce(const BoltLoadSet *l, PetscInt b)
+{
+  return l->boltForce[b];
+}
+Vec BoltLoadSetBoltUnit(const BoltLoadSet *l, PetscInt b)
+{
+  return l->boltUnit[b];
+}

@@ -111,7 +111,17 @@ PetscErrorCode BoltNewmarkPreload(BoltNewmark *nm)
   PetscFunctionBeginUser;
   nm->step = 0;
   PetscCall(VecCopy(nm->op->preload, nm->rhs));
-  if (nm->staticWithLoad && nm->calibratePreload && nm->preloadTarget > 0) {
+  if (nm->bolts && nm->calibratePreload) { /* several bolts, each to its own clamp force */
+    PetscCall(BoltNewmarkPreloadBolts(nm, &nout, &nin));
+    if (nm->staticWithLoad) {
+      PetscInt nout0 = nout, nin0 = nin;
+      PetscCall(VecCopy(nm->op->preload, nm->rhs));
+      PetscCall(VecAXPY(nm->rhs, 1.0, nm->op->load));
+      PetscCall(BoltDualSolveStatic(nm->dual, nm->rhs, nm->q, 0, &nout, &nin));
+      nout += nout0;
+      nin += nin0;
+    }
+  } else if (nm->staticWithLoad && nm->calibratePreload && nm->preloadTarget > 0) {
     /* the preload is calibrated on its own (the load changes the pair forces), then the load
        is added to the calibrated preload, from that state */
     PetscInt nout0, nin0;

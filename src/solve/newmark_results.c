@@ -106,6 +106,7 @@ PetscErrorCode BoltNewmarkPreloadSummaryWrite(BoltNewmark *nm, BoltJSON *j)
   PetscCall(BoltJSONReal(j, "inner", nm->staticInner));
   PetscCall(BoltJSONInt(j, "factorizations", nm->staticFactorizations));
   PetscCall(BoltJSONInt(j, "solves", nm->staticSolves));
+  PetscCall(BoltNewmarkBoltsSummaryWrite(nm, j));
   PetscFunctionReturn(0);
 }
 
