@@ -1,6 +1,7 @@
 """The assembled model: mass, rigid motions, patch test, cantilever against Timoshenko theory,
 the tied reference joint, and identical results on 1 and 2 MPI ranks."""
 import math
+import re
 import xml.etree.ElementTree as ET
 
 import h5py
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 
 import beam_theory
-from conftest import make_mesh, run_summary
+from conftest import ROOT, make_mesh, run_summary
 
 DENSITY = {"steel": 7800.0, "aluminium": 2700.0}
 QUIET = ["-static", "false", "-modal_nev", "0", "-output", "false"]
@@ -99,17 +100,41 @@ def test_ranks_give_same_operators_and_solution(joint_small, tmp_path):
         assert np.abs(a - b).max() <= 1e-10 * np.abs(a).max(), name
 
 
+def documented(text, pattern, n):
+    """The n figures after `pattern` in a document's text, as printed (strings)."""
+    m = re.search(pattern + r"\D*" + r"\D+".join([r"(\d+\.\d+)"] * n), text)
+    assert m, pattern
+    return m.groups()
+
+
+def assert_printed(value, printed, what):
+    """value rounds to the figure as printed: within half a unit of its last digit."""
+    half = 0.5 * 10.0 ** -len(printed.split(".")[1])
+    assert abs(value - float(printed)) <= half, (what, value, printed)
+
+
 def test_tied_paper_joint(joint_paper, tmp_path):
+    """The tied joint of `make run` (inputs/tied-joint.yaml, the paper-level mesh, 2 ranks): its
+    tip deflection and first three eigenfrequencies are the figures README.md and docs/results.md
+    print, to every printed digit (results.md: 0.45845 mm, 91.472, 432.509, 564.671 Hz; measured
+    0.4584487 mm, 91.472107, 432.508532, 564.671451 Hz, the nearest within 3.2e-5 Hz, 7e-8, of a
+    rounding edge, far above the 1e-10 by which rank counts differ)."""
     mesh, info = joint_paper
-    s = run_summary(["-mesh", mesh, "-output_dir", tmp_path, "-modal_nev", "3"], tmp_path, ranks=2)
-    assert abs(s["dofs"] - 16065) <= 0.1 * 16065
-    assert s["dofs"] == info["dofs"] and s["contact_dofs"] == info["contact_dofs"]
-    assert s["contact_dofs_per_pair"] == info["contact_dofs_per_pair"]
-    assert len(s["contact_dofs_per_pair"]) == 5
+    s = run_summary(["-options_file", "inputs/tied-joint.yaml", "-mesh", mesh, "-output", "false"], tmp_path, ranks=2)
+    assert (s["dofs"], s["contact_dofs"]) == (info["dofs"], info["contact_dofs"]) == (16266, 3888)
+    assert s["contact_dofs_per_pair"] == info["contact_dofs_per_pair"] and len(s["contact_dofs_per_pair"]) == 5
+    u = -s["static"]["probe_displacement"] * 1e3   # mm, 10 N down
     freq = s["modal"]["frequencies_hz"]
-    assert len(freq) == 3 and 0 < freq[0] < freq[1] < freq[2]
-    assert s["static"]["probe_displacement"] < 0  # downward load, downward tip
-    print("tied joint:", s["static"]["probe_displacement"], freq)
+    print("tied joint:", u, "mm", freq, "Hz")
+    readme = (ROOT / "README.md").read_text()
+    results = (ROOT / "docs" / "results.md").read_text()
+    tables = {"README.md headline": documented(readme, r"tied joint: tip deflection, f1 - f3", 4),
+              "docs/results.md verify-model": documented(results, r"\| 1 \| 16266 \| 3888 \| incompatible \|", 4)}
+    for doc, figures in tables.items():
+        for value, printed, what in zip([u] + freq[:3], figures, ["u_z [mm]", "f1", "f2", "f3"]):
+            assert_printed(value, printed, f"{doc} {what}")
+    for value, printed in zip(freq, documented(readme, r"first three eigenfrequencies \(", 3)):
+        assert_printed(value, printed, "README.md first run")
 
 
 def test_xdmf_matches_hdf5(joint_small, tmp_path):
