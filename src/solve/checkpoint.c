@@ -138,12 +138,45 @@ PetscErrorCode BoltNewmarkCheckpointWrite(BoltNewmark *nm)
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/checkpoint/history", "fingerprint", PETSC_STRING, fp));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/checkpoint/history", "step", PETSC_INT, &nm->step));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/checkpoint/history", "preload_scale", PETSC_REAL, &nm->preloadScale));
+  for (PetscInt b = 0; nm->bolts && b < BoltLoadSetBoltCount(nm->bolts); b++) { /* -preload_bolts: each bolt's calibrated layer force */
+    char name[BOLTROM_NAME_LEN + 32];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "bolt_%s_layer_force", BoltLoadSetBoltName(nm->bolts, b)));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/checkpoint/history", name, PETSC_REAL, &nm->boltLayerForce[b]));
+  }
   PetscCall(PetscViewerDestroy(&v));
   /* rename once every rank has closed the file: a run killed before this point leaves the
      previous checkpoint complete */
   PetscCallMPI(MPI_Barrier(comm));
   if (!rank) PetscCall(BoltHDF5Seal(tmp));
   if (!rank) PetscCheck(rename(tmp, file) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename %s to %s", tmp, file);
+  PetscFunctionReturn(0);
+}
+
+/* The preload of the run that wrote the checkpoint v (file): its calibration's scale, or with
+   -preload_bolts each bolt's layer force. */
+static PetscErrorCode CheckpointReadPreload(BoltNewmark *nm, PetscViewer v, const char file[])
+{
+  BoltOperator *op   = nm->op;
+  MPI_Comm      comm = op->comm;
+  PetscReal     scale;
+
+  PetscFunctionBeginUser;
+  /* the static solve of this run converged to the loop's tolerance, not to round-off, and
+     differs slightly from the one of the run that wrote the checkpoint */
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/checkpoint/history", "preload_scale", PETSC_REAL, NULL, &scale));
+  PetscCall(VecScale(op->preload, scale / nm->preloadScale));
+  nm->preloadScale = scale;
+  if (!nm->bolts) PetscFunctionReturn(0);
+  PetscCall(VecZeroEntries(op->preload));
+  for (PetscInt b = 0; b < BoltLoadSetBoltCount(nm->bolts); b++) {
+    char      name[BOLTROM_NAME_LEN + 32];
+    PetscBool has;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "bolt_%s_layer_force", BoltLoadSetBoltName(nm->bolts, b)));
+    PetscCall(PetscViewerHDF5HasAttribute(v, "/checkpoint/history", name, &has));
+    PetscCheck(has, comm, PETSC_ERR_USER_INPUT, "-restart: the checkpoint %s has no bolt %s: restart with the -preload_bolts of the run that wrote it", file, BoltLoadSetBoltName(nm->bolts, b));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/checkpoint/history", name, PETSC_REAL, NULL, &nm->boltLayerForce[b]));
+    PetscCall(VecAXPY(op->preload, nm->boltLayerForce[b], BoltLoadSetBoltUnit(nm->bolts, b)));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -191,14 +224,7 @@ PetscErrorCode BoltNewmarkCheckpointRead(BoltNewmark *nm)
   PetscCall(PetscFree(fpFile));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/checkpoint/history", "step", PETSC_INT, NULL, &step));
   PetscCheck(step <= nm->nsteps, comm, PETSC_ERR_USER_INPUT, "-restart: the checkpoint %s is at step %" PetscInt_FMT ", past the end of this run (%" PetscInt_FMT " steps): raise -ts_end", file, step, nm->nsteps);
-  {
-    /* the preload calibration of the run that wrote the checkpoint: the static solve of this
-       run converged to the loop's tolerance, not to round-off, and differs slightly */
-    PetscReal scale;
-    PetscCall(PetscViewerHDF5ReadAttribute(v, "/checkpoint/history", "preload_scale", PETSC_REAL, NULL, &scale));
-    PetscCall(VecScale(op->preload, scale / nm->preloadScale));
-    nm->preloadScale = scale;
-  }
+  PetscCall(CheckpointReadPreload(nm, v, file));
   PetscCall(PetscViewerHDF5PushGroup(v, "/checkpoint"));
   PetscCall(BoltReadAll(v, comm, "history", &n, &h));
   nsnap = (PetscInt)h[1];

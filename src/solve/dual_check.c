@@ -25,7 +25,7 @@ PetscErrorCode BoltDualCheckStep(BoltDual *d, Vec q)
   if (leaving && !d->checkLeaving) {
     d->checkFirstStep = d->step;
     d->checkFirstTime = d->time;
-    PetscCall(PetscPrintf(op->comm, "WARNING %s: at step %" PetscInt_FMT ", t = %g s, %" PetscInt_FMT " held contact points would leave their state (an open one closing, or a closed one opening): the model keeps them, so its results near them are suspect (summary: contact_check)\n", op->name, d->step, (double)d->time, leaving));
+    PetscCall(PetscPrintf(op->comm, "WARNING %s: at step %" PetscInt_FMT ", t = %g s, %" PetscInt_FMT " held contact points would leave their state; the model keeps them, so results near them are suspect\n", op->name, d->step, (double)d->time, leaving));
   }
   d->checkLeaving += leaving;
   d->checkSteps++;

@@ -10,7 +10,6 @@ PetscErrorCode BoltNewmarkSetBolts(BoltNewmark *nm, BoltLoadSet *loads)
 {
   PetscFunctionBeginUser;
   nm->bolts = BoltLoadSetBoltCount(loads) > 0 ? loads : NULL;
-  PetscCheck(!nm->bolts || (!nm->checkpointEvery && !nm->restart), nm->op->comm, PETSC_ERR_SUP, "Checkpoints of a model with -preload_bolts are not written yet (a checkpoint keeps one preload scale): run it without -checkpoint_every and -restart");
   PetscFunctionReturn(0);
 }
 
