@@ -77,6 +77,7 @@ PetscErrorCode BoltHDF5AttributeReals(PetscViewer, const char[], PetscInt, const
    integrators; prefix NULL: not configurable from the command line. */
 PetscErrorCode BoltDirectSolverSetType(KSP, PetscBool, MatSolverType);
 PetscErrorCode BoltDirectSolverCreate(MPI_Comm, const char[], Mat, PetscBool, MatSolverType, KSP *);
+PetscErrorCode BoltBVTolerateCancellation(BV);
 PetscErrorCode BoltDirectSolverSetFromOptions(MPI_Comm, const char[], PetscBool, MatSolverType);
 PetscErrorCode BoltModalSetFromOptions(MPI_Comm, PetscInt, const char[]); /* analysis.c */
 

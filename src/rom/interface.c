@@ -72,6 +72,7 @@ static PetscErrorCode IRSecondOrderKrylov(BoltInterface *ir, Vec b, PetscInt n, 
   PetscCall(BVSetSizesFromVec(Z, z, n));
   PetscCall(BVSetType(Z, BVSVEC));
   PetscCall(BVSetOrthogonalization(Z, BV_ORTHOG_CGS, BV_ORTHOG_REFINE_ALWAYS, PETSC_DEFAULT, BV_ORTHOG_BLOCK_GS));
+  PetscCall(BoltBVTolerateCancellation(Z));
   PetscCall(VecDestroy(&z));
   PetscCall(VecDuplicate(b, &xI));
   PetscCall(VecDuplicate(b, &yI));
@@ -226,6 +227,7 @@ PetscErrorCode BoltInterfaceBuild(BoltContactSet *c, Mat M, Mat C, Mat K, PetscR
   PetscCall(BVSetSizesFromVec(ir->VIR, ir->iA, PetscMax(nCCM + nJIM, 1)));
   PetscCall(BVSetType(ir->VIR, BVSVEC));
   PetscCall(BVSetOrthogonalization(ir->VIR, BV_ORTHOG_CGS, BV_ORTHOG_REFINE_ALWAYS, PETSC_DEFAULT, BV_ORTHOG_BLOCK_GS));
+  PetscCall(BoltBVTolerateCancellation(ir->VIR));
   ir->nIR = 0;
   PetscCall(VecSet(ir->iA, 1.0));
   PetscCall(IRSecondOrderKrylov(ir, ir->iA, nCCM, &ir->rankCCM));

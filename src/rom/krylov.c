@@ -181,7 +181,9 @@ static PetscErrorCode KrylovCoefficientBasis(PetscInt r0, PetscInt rowsS, PetscI
   PetscCall(BVSetSizes(*S, rowsS, rowsS, colsS));
   PetscCall(BVSetType(*S, BVSVEC));
   PetscCall(BVSetOrthogonalization(*S, BV_ORTHOG_CGS, BV_ORTHOG_REFINE_IFNEEDED, PETSC_DEFAULT, BV_ORTHOG_BLOCK_GS));
+  PetscCall(BoltBVTolerateCancellation(*S));
   PetscCall(BVDuplicateResize(*S, nbw, Sc));
+  PetscCall(BoltBVTolerateCancellation(*Sc));
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, colsS, nbw, NULL, Hs));
   PetscCall(BVGetArray(*S, &sa));
   PetscCall(PetscArrayzero(sa, rowsS * colsS));
@@ -275,10 +277,15 @@ PetscErrorCode BoltKrylovBuild(BoltKrylov *kr, Mat M, Mat C, Mat K, BV B, BV *V)
   PetscCall(BVSetSizes(U, n, N, p));
   PetscCall(BVSetType(U, BVSVEC));
   PetscCall(BVSetOrthogonalization(U, BV_ORTHOG_CGS, BV_ORTHOG_REFINE_IFNEEDED, PETSC_DEFAULT, BV_ORTHOG_BLOCK_GS));
+  PetscCall(BoltBVTolerateCancellation(U));
   PetscCall(BVDuplicateResize(U, nbw, &X));
   PetscCall(BVDuplicateResize(U, nbw, &Y));
   PetscCall(BVDuplicateResize(U, nbw, &W1));
   PetscCall(BVDuplicateResize(U, nbw, &W2));
+  PetscCall(BoltBVTolerateCancellation(X));
+  PetscCall(BoltBVTolerateCancellation(Y));
+  PetscCall(BoltBVTolerateCancellation(W1));
+  PetscCall(BoltBVTolerateCancellation(W2));
   PetscCall(PetscMalloc1(nbw, &nrm0));
   capU = p;
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, capU, nbw, NULL, &H));

@@ -16,6 +16,7 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
   PetscCall(BVCreate(BoltMeshComm(BoltContactSetMesh(c)), B));
   PetscCall(BVSetSizesFromVec(*B, layout, *ncols));
   PetscCall(BVSetFromOptions(*B));
+  PetscCall(BoltBVTolerateCancellation(*B));
   for (PetscInt i = 0; i < npairs; i++)
     for (PetscInt d = 0; d < 3; d++) {
       Vec v;
@@ -156,6 +157,7 @@ static PetscErrorCode BoltSnapshotModes(BV V, PetscInt nsnap, Vec snap[], PetscI
   PetscCall(BVCreate(PetscObjectComm((PetscObject)V), &X));
   PetscCall(BVSetSizesFromVec(X, snap[0], ns));
   PetscCall(BVSetFromOptions(X));
+  PetscCall(BoltBVTolerateCancellation(X));
   for (PetscInt j = 0; j < ns; j++) { /* the motion from the preloaded state, less what V spans */
     PetscCall(BVGetColumn(X, j, &x));
     PetscCall(VecWAXPY(x, -1.0, snap[0], snap[j + 1]));
@@ -236,6 +238,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     PetscCall(BVCreate(o->comm, &B));
     PetscCall(BVSetSizesFromVec(B, BoltLoadSetLoad(loads), ir->nIR + 2));
     PetscCall(BVSetFromOptions(B));
+    PetscCall(BoltBVTolerateCancellation(B));
     PetscCall(BoltInterfaceInputs(ir, B, 0));
     PetscCall(BVInsertVec(B, ir->nIR, BoltLoadSetLoadUnit(loads)));
     PetscCall(BVInsertVec(B, ir->nIR + 1, BoltLoadSetPreload(loads)));

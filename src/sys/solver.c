@@ -42,3 +42,14 @@ PetscErrorCode BoltDirectSolverSetFromOptions(MPI_Comm comm, const char prefix[]
   PetscCall(KSPDestroy(&ksp));
   PetscFunctionReturn(0);
 }
+
+/* Bases in the Euclidean product, which is definite: a squared remainder norm that comes out
+   negative is cancellation in orthogonalising a (nearly) dependent column, and counts as zero
+   (the caller then drops the column) instead of SLEPc's "indefinite matrix" error, which a
+   partition's rounding could otherwise raise at random. */
+PetscErrorCode BoltBVTolerateCancellation(BV bv)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BVSetDefiniteTolerance(bv, PETSC_MAX_REAL));
+  PetscFunctionReturn(0);
+}
