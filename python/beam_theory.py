@@ -21,22 +21,8 @@ def tip_deflection(P, L, b, h, E, nu):
 def first_frequency(L, b, h, E, nu, rho, nel=400):
     """First bending eigenfrequency [Hz] of the Timoshenko cantilever (shear and rotary inertia),
     from a converged 1D finite element model (linear elements, reduced-integration shear)."""
-    I, A = b * h**3 / 12.0, b * h
-    G, k = E / (2.0 * (1.0 + nu)), shear_coefficient(nu)
-    le = L / nel
-    n = 2 * (nel + 1)                      # (w, theta) per node
-    K = np.zeros((n, n)); M = np.zeros((n, n))
-    # bending: EI theta'^2; shear (one-point): kGA (w' - theta)^2
-    kb = E * I / le * np.array([[0, 0, 0, 0], [0, 1, 0, -1], [0, 0, 0, 0], [0, -1, 0, 1]])
-    B = np.array([-1 / le, -0.5, 1 / le, -0.5])
-    ks = k * G * A * le * np.outer(B, B)
-    Nl = np.array([[2, 1], [1, 2]]) * le / 6.0
-    for e in range(nel):
-        idx = [2 * e, 2 * e + 1, 2 * e + 2, 2 * e + 3]
-        K[np.ix_(idx, idx)] += kb + ks
-        M[np.ix_([idx[0], idx[2]], [idx[0], idx[2]])] += rho * A * Nl
-        M[np.ix_([idx[1], idx[3]], [idx[1], idx[3]])] += rho * I * Nl
-    free = np.arange(2, n)
+    K, M = _timoshenko_matrices(L, b, h, E, nu, rho, nel)
+    free = np.arange(2, len(K))            # the clamped node's w and theta removed
     w2 = scipy.linalg.eigh(K[np.ix_(free, free)], M[np.ix_(free, free)], eigvals_only=True, subset_by_index=[0, 0])
     return float(np.sqrt(w2[0]) / (2 * np.pi))
 
