@@ -101,7 +101,7 @@ PetscErrorCode BoltRigidFrequencies(BV, Mat, PetscReal[6]);
 PetscReal      BoltRigidShift(void);
 PetscErrorCode BoltStaticSolveFree(Mat, Mat, BV, Vec, Vec, const char[], PetscInt *);
 /* bolt_tension.c: the clamp force read from the stud beyond the preload layers */
-PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *, PetscInt, Mat, Vec, Vec, PetscReal *);
+PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *, PetscInt, Mat, Vec, Vec, PetscReal *, PetscBool *);
 PetscInt       BoltLoadSetBoltCount(const BoltLoadSet *);
 const char    *BoltLoadSetBoltName(const BoltLoadSet *, PetscInt);
 PetscReal      BoltLoadSetBoltForce(const BoltLoadSet *, PetscInt);

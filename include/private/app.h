@@ -51,6 +51,7 @@ struct _n_BoltSummary {
   BoltNewmark    *fomRun;                        /* "preload" and "fom": the FOM's run */
   PetscReal       preloadForce[BOLTROM_MAX_PAIRS]; /* the FOM's preloaded state, before its transient */
   PetscReal       studTension; /* the FOM's preloaded stud tension [N] (BoltLoadSetStudTension) */
+  PetscBool       hasStud;     /* an element layer lies between the preload layers */
   PetscReal       tractionStats[3], preloadPenetration, preloadChange;
   PetscInt        preloadActive, preloadSliding;
   BoltROM        *rom;                           /* "rom": the reduced model and its run */

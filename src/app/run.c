@@ -158,8 +158,8 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
     if (BoltLoadSetHasPreload(r->loads) && !BoltLoadSetBoltCount(r->loads)) { /* the clamp force read from the stud, not from the contact forces */
       Mat K;
       PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, NULL));
-      PetscCall(BoltLoadSetStudTension(r->loads, 0, K, q, BoltOperatorPreloadVec(r->fomOp), &s->studTension));
-      PetscCall(PetscPrintf(r->comm, "  stud tension beyond the preload layers: %.1f N\n", (double)s->studTension));
+      PetscCall(BoltLoadSetStudTension(r->loads, 0, K, q, BoltOperatorPreloadVec(r->fomOp), &s->studTension, &s->hasStud));
+      if (s->hasStud) PetscCall(PetscPrintf(r->comm, "  stud tension beyond the preload layers: %.1f N\n", (double)s->studTension));
     }
   }
   PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));

@@ -69,7 +69,7 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
   PetscFunctionBeginUser;
   PetscCall(BoltJSONBeginObject(j, "preload"));
   PetscCall(BoltJSONReal(j, "force", BoltLoadSetPreloadForce(s->loads)));
-  if (BoltLoadSetHasPreload(s->loads)) PetscCall(BoltJSONReal(j, "stud_tension", s->studTension));
+  if (s->hasStud) PetscCall(BoltJSONReal(j, "stud_tension", s->studTension));
   PetscCall(BoltNewmarkPreloadSummaryWrite(s->fomRun, j));
   PetscCall(BoltJSONReal(j, "penetration_max", s->preloadPenetration));
   PetscCall(BoltJSONReal(j, "multiplier_change", s->preloadChange));

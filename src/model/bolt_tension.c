@@ -55,8 +55,9 @@ static PetscErrorCode LayerStiffness(BoltLoadSet *l, const char lower[], const c
 
 /* The tension T [N] of bolt b's stud (b: an index of -preload_bolts, or 0 for the one bolt)
    under the displacement u and the applied preload f (K: the structural stiffness, for its
-   layout). Collective. */
-PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *l, PetscInt b, Mat K, Vec u, Vec f, PetscReal *T)
+   layout); *found is false, and T is 0, when no element layer lies between the two layers (a
+   clamped face as the lower layer presses the upper one: there is no stud). Collective. */
+PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *l, PetscInt b, Mat K, Vec u, Vec f, PetscReal *T, PetscBool *found)
 {
   BoltMesh          *m = l->mesh;
   Mat                KL;
@@ -70,7 +71,12 @@ PetscErrorCode BoltLoadSetStudTension(BoltLoadSet *l, PetscInt b, Mat K, Vec u, 
 
   PetscCheck(l->hasPreload && b >= 0 && b < PetscMax(l->nbolts, 1), m->comm, PETSC_ERR_ARG_OUTOFRANGE, "No bolt %" PetscInt_FMT " with preload layers", b);
   PetscCall(LayerStiffness(l, lower, upper, K, &KL, &ncells));
-  PetscCheck(ncells > 0, m->comm, PETSC_ERR_USER_INPUT, "No hexahedron has all its nodes in the preload layers '%s' and '%s': they must bound one element layer of the stud", lower, upper);
+  *T     = 0;
+  *found = (PetscBool)(ncells > 0);
+  if (!*found) {
+    PetscCall(MatDestroy(&KL));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecDuplicate(u, &y));
   PetscCall(MatMult(KL, u, y));
   PetscCall(VecGetOwnershipRange(y, &rstart, NULL));

@@ -34,7 +34,9 @@ PetscErrorCode BoltNewmarkPreloadBolts(BoltNewmark *nm, PetscInt *nout, PetscInt
     err = 0;
     for (PetscInt b = 0; b < nb; b++) {
       const PetscReal target = BoltLoadSetBoltForce(nm->bolts, b);
-      PetscCall(BoltLoadSetStudTension(nm->bolts, b, BoltOperatorStiffness(op), nm->q, op->preload, &nm->boltTension[b]));
+      PetscBool stud;
+      PetscCall(BoltLoadSetStudTension(nm->bolts, b, BoltOperatorStiffness(op), nm->q, op->preload, &nm->boltTension[b], &stud));
+      PetscCheck(stud, op->comm, PETSC_ERR_USER_INPUT, "Bolt %s: no hexahedron lies between its layers preload_%s_lower and preload_%s_upper; they must bound one element layer of its stud", BoltLoadSetBoltName(nm->bolts, b), BoltLoadSetBoltName(nm->bolts, b), BoltLoadSetBoltName(nm->bolts, b));
       PetscCheck(nm->boltTension[b] > 0 || target == 0, op->comm, PETSC_ERR_USER_INPUT, "Bolt %s clamps nothing (its stud carries %g N): check its preload layers and the axis (-preload_axis)", BoltLoadSetBoltName(nm->bolts, b), (double)nm->boltTension[b]);
       err = PetscMax(err, PetscAbsReal(nm->boltTension[b] - target) / PetscMax(PetscAbsReal(target), PETSC_SMALL));
     }
