@@ -305,25 +305,41 @@ def deck_cycle(mesh, preload_node_force, slope, mu, stick, load, m):
     return s
 
 
-def run_ccx_bounded(workdir, job, text, seconds):
-    """ccx on one thread, stopped after `seconds`: with surface-to-surface friction and fixed
-    increments ccx has no iteration limit, and in this cycle it can alternate between contact
-    states without end (seen on 2 threads at the second zero crossing; on 1 thread the same deck
-    converges)."""
+def run_ccx_retried(workdir, job, text, max_iterations, attempts):
+    """ccx on one thread, started again when an increment takes more than `max_iterations` Newton
+    iterations: with surface-to-surface friction and fixed increments ccx has no iteration limit,
+    and in this cycle it can alternate between contact states without end. Its contact treatment
+    has a random element once its iterations repeat (the same deck took different iteration
+    counts from one run to the next), so a new start may converge. Returns the .dat text, the
+    seconds of the last attempt and the number of attempts."""
     path = Path(workdir) / f"{job}.inp"
     path.write_text(text)
     env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_STIFFNESS="1", CCX_NPROC_EQUATION_SOLVER="1")
-    t0 = time.perf_counter()
-    try:
-        proc = subprocess.run(["ccx", "-i", job], cwd=workdir, capture_output=True, text=True, env=env, timeout=seconds)
-    except subprocess.TimeoutExpired:
-        raise RuntimeError(f"ccx {job} did not finish in {seconds:g} s (see {workdir}/{job}.sta and .cvg)") from None
-    dt = time.perf_counter() - t0
-    (Path(workdir) / f"{job}.log").write_text(proc.stdout + proc.stderr)
-    if proc.returncode != 0 or "ERROR" in proc.stdout:
-        err = [line for line in proc.stdout.splitlines() if "ERROR" in line][:5]
-        raise RuntimeError(f"ccx {job} failed ({proc.returncode}): {err} (see {workdir}/{job}.log)")
-    return (Path(workdir) / f"{job}.dat").read_text(), dt
+    cvg = Path(workdir) / f"{job}.cvg"
+    for attempt in range(1, attempts + 1):
+        cvg.unlink(missing_ok=True)
+        t0 = time.perf_counter()
+        with open(Path(workdir) / f"{job}.log", "w") as log:
+            proc = subprocess.Popen(["ccx", "-i", job], cwd=workdir, stdout=log, stderr=subprocess.STDOUT, env=env)
+            stalled = False
+            while proc.poll() is None:
+                time.sleep(2)
+                lines = cvg.read_text().splitlines() if cvg.exists() else []
+                last = lines[-1].split() if lines else []
+                if len(last) > 3 and last[3].isdigit() and int(last[3]) > max_iterations:
+                    proc.kill()
+                    proc.wait()
+                    stalled = True
+        dt = time.perf_counter() - t0
+        if stalled:
+            print(f"ccx {job}: attempt {attempt} stopped, {max_iterations} iterations in increment {last[1]}")
+            continue
+        out = (Path(workdir) / f"{job}.log").read_text()
+        if proc.returncode != 0 or "ERROR" in out:
+            err = [line for line in out.splitlines() if "ERROR" in line][:5]
+            raise RuntimeError(f"ccx {job} failed ({proc.returncode}): {err} (see {workdir}/{job}.log)")
+        return (Path(workdir) / f"{job}.dat").read_text(), dt, attempt
+    raise RuntimeError(f"ccx {job}: no attempt of {attempts} converged (see {workdir}/{job}.cvg)")
 
 
 def loop_area(force, u):
@@ -349,8 +365,10 @@ def add_cycle_arguments(ap):
                         "macro-slip near 2.1 kN, as the friction comparison's end load)")
     g.add_argument("--cycle-quarter", type=int, default=3,
                    help="increments per quarter cycle (default 3; the cycle takes 5 quarters)")
-    g.add_argument("--cycle-timeout", type=float, default=3600.0,
-                   help="stop ccx's cycle after this many seconds (default 3600; ccx runs it on one thread)")
+    g.add_argument("--cycle-max-iterations", type=int, default=600,
+                   help="start ccx again when one increment takes more Newton iterations (default 600; converging "
+                        "increments took 11 - 318)")
+    g.add_argument("--cycle-attempts", type=int, default=4, help="ccx starts at most (default 4)")
     g.add_argument("--tol-cycle-area", type=float, default=0.1,
                    help="relative difference of the loop's area, the dissipation per cycle (default 0.1); macro-slip "
                         "(--macro-slip) must start within one increment of each other in every branch")
@@ -383,7 +401,8 @@ def run_hysteresis(a, work, msh, mesh, res):
     mu = {pair: mu_v for pair in cc.PAIRS}
     stick = {pair: a.friction_stick * E[pair] for pair in cc.PAIRS}
     E_al = cc.MATERIALS["aluminium"][0]
-    dat, cdt = run_ccx_bounded(work, "cycle", deck_cycle(mesh, fnode, a.slope * E_al, mu, stick, F, m), a.cycle_timeout)
+    dat, cdt, tries = run_ccx_retried(work, "cycle", deck_cycle(mesh, fnode, a.slope * E_al, mu, stick, F, m),
+                                      a.cycle_max_iterations, a.cycle_attempts)
     disp = [(t, list(d.values())[0][0]) for t, d in cc.dat_displacements(dat) if t is not None]
     u0 = [u for t, u in disp if abs(t - 1.0) < 1e-9]
     incs = {}
@@ -422,7 +441,7 @@ def run_hysteresis(a, work, msh, mesh, res):
                          for code in ("ccx", "boltrom")}
     r = dict(load=F, quarter=m, increments=n, mu=mu_v, macro_slip_ratio=a.macro_slip, points_compared=n + 1, rows=rows, area_ccx=area_c,
              area_boltrom=area_b, area_rel=abs(area_b - area_c) / abs(area_c), onset=onset,
-             ccx_seconds=cdt, boltrom_seconds=bdt, contact_points=sm["fom"]["contact_points"],
+             ccx_seconds=cdt, ccx_attempts=tries, boltrom_seconds=bdt, contact_points=sm["fom"]["contact_points"],
              command=" ".join(str(c) for c in cmd))
     res["hysteresis"] = r
     res["checks"].append(dict(name="cycle loop area", ccx=area_c, boltrom=area_b, rel=r["area_rel"],
@@ -449,4 +468,4 @@ def print_hysteresis(r):
     for b, o in r["onset"].items():
         print(f"macro-slip ({b}; the plate interface at {r['macro_slip_ratio']:g} mu N): ccx from increment {o['ccx'][0]} "
               f"({o['ccx'][1]} N), boltrom from {o['boltrom'][0]} ({o['boltrom'][1]} N)")
-    print(f"ccx {r['ccx_seconds']:.1f} s, boltrom {r['boltrom_seconds']:.1f} s")
+    print(f"ccx {r['ccx_seconds']:.1f} s (attempt {r['ccx_attempts']}), boltrom {r['boltrom_seconds']:.1f} s")
