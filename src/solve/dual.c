@@ -36,7 +36,7 @@ PetscErrorCode BoltDualCreate(BoltOperator *op, BoltDual **dp)
   d->extrapolate    = PETSC_TRUE;
   d->closeCycles    = PETSC_TRUE;
   d->preloadScale   = 1.0;
-  d->checkEvery     = 10; /* docs/decisions.md */
+  d->checkEvery     = 25; /* docs/decisions.md */
   PetscCall(PetscStrncpy(d->innerType, "cg", sizeof(d->innerType)));
   *dp = d;
   PetscFunctionReturn(0);

@@ -1,5 +1,5 @@
 /* The contact conditions at every node pair after every -contact_check_every-th converged step of
-   the transient (10 by default: docs/decisions.md), from the
+   the transient (25 by default: docs/decisions.md), from the
    model's own displacements: a reduced model holds part of its pairs in their state and computes
    their gaps only now and then; this check recomputes them all and says whether a held pair
    would have changed state (a warning at the first, and a flag in the summary). */
