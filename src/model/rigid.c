@@ -187,7 +187,16 @@ PetscErrorCode BoltRigidFrequencies(BV R, Mat K, PetscReal freq[6])
 
   PetscFunctionBeginUser;
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, 6, 6, NULL, &H));
-  PetscCall(BVMatProject(R, K, R, H));
+  { /* R' K R in the Euclidean product (R stays mass-orthonormal: only the projection drops M) */
+    Mat       B;
+    PetscBool indef;
+    PetscCall(BVGetMatrix(R, &B, &indef));
+    PetscCall(PetscObjectReference((PetscObject)B));
+    PetscCall(BVSetMatrix(R, NULL, PETSC_FALSE));
+    PetscCall(BVMatProject(R, K, R, H));
+    PetscCall(BVSetMatrix(R, B, indef));
+    PetscCall(MatDestroy(&B));
+  }
   PetscCall(MatDenseGetArray(H, &h));
   PetscCallBLAS("LAPACKsyev", LAPACKsyev_("N", "U", &n, h, &n, w, work, &lwork, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed (%d)", (int)info);
