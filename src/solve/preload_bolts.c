@@ -38,17 +38,17 @@ PetscErrorCode BoltNewmarkPreloadBolts(BoltNewmark *nm, PetscInt *nout, PetscInt
       PetscCall(BoltLoadSetStudTension(nm->bolts, b, BoltOperatorStiffness(op), nm->q, op->preload, &nm->boltTension[b], &stud));
       PetscCheck(stud, op->comm, PETSC_ERR_USER_INPUT, "Bolt %s: no hexahedron lies between its layers preload_%s_lower and preload_%s_upper; they must bound one element layer of its stud", BoltLoadSetBoltName(nm->bolts, b), BoltLoadSetBoltName(nm->bolts, b), BoltLoadSetBoltName(nm->bolts, b));
       PetscCheck(nm->boltTension[b] > 0 || target == 0, op->comm, PETSC_ERR_USER_INPUT, "Bolt %s clamps nothing (its stud carries %g N): check its preload layers and the axis (-preload_axis)", BoltLoadSetBoltName(nm->bolts, b), (double)nm->boltTension[b]);
-      err = PetscMax(err, PetscAbsReal(nm->boltTension[b] - target) / PetscMax(PetscAbsReal(target), PETSC_SMALL));
+      if (target != 0) err = PetscMax(err, PetscAbsReal(nm->boltTension[b] - target) / PetscAbsReal(target)); /* a bolt of no force takes no layer force: its stud carries what the others impose */
     }
     for (PetscInt b = 0; b < nb; b++)
-      if (nm->boltTension[b] > 0) nm->boltLayerForce[b] *= BoltLoadSetBoltForce(nm->bolts, b) / nm->boltTension[b];
+      if (nm->boltTension[b] > 0 && BoltLoadSetBoltForce(nm->bolts, b) != 0) nm->boltLayerForce[b] *= BoltLoadSetBoltForce(nm->bolts, b) / nm->boltTension[b];
   }
   nm->boltPasses = pass - 1;
   PetscCheck(err <= 1e-10, op->comm, PETSC_ERR_NOT_CONVERGED, "The bolts' preloads did not settle: after %" PetscInt_FMT " static solves a clamp force is still %.3e off its target; the bolts may load each other too strongly (or the contact set keeps changing)", nm->boltPasses, (double)err);
   /* the state and operator hold the last solve's layer forces, whose clamp forces are the ones checked */
   PetscCall(VecZeroEntries(op->preload));
   for (PetscInt b = 0; b < nb; b++) {
-    nm->boltLayerForce[b] *= nm->boltTension[b] / BoltLoadSetBoltForce(nm->bolts, b);
+    if (nm->boltTension[b] > 0 && BoltLoadSetBoltForce(nm->bolts, b) != 0) nm->boltLayerForce[b] *= nm->boltTension[b] / BoltLoadSetBoltForce(nm->bolts, b); /* undo the last pass's correction */
     PetscCall(VecAXPY(op->preload, nm->boltLayerForce[b], BoltLoadSetBoltUnit(nm->bolts, b)));
   }
   PetscCall(PetscPrintf(op->comm, "Bolts calibrated in %" PetscInt_FMT " static solves; clamp force (layer force) [N]:", nm->boltPasses));
