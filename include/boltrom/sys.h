@@ -26,6 +26,7 @@ PetscErrorCode BoltJSONInt(BoltJSON *, const char[], PetscInt);
 PetscErrorCode BoltJSONReal(BoltJSON *, const char[], PetscReal);
 PetscErrorCode BoltJSONString(BoltJSON *, const char[], const char[]);
 PetscErrorCode BoltJSONRealArray(BoltJSON *, const char[], PetscInt, const PetscReal[]);
+PetscErrorCode BoltJSONNamedValues(BoltJSON *, const char[], PetscInt, const char[][BOLTROM_NAME_LEN], const PetscInt[], const PetscReal[]);
 PetscErrorCode BoltJSONClose(BoltJSON **);
 
 /* ------------------------------------------------------------------ exact_sum.c */

@@ -162,11 +162,6 @@ PetscErrorCode BoltContactSetSummaryWrite(const BoltContactSet *c, BoltJSON *j)
 PetscErrorCode BoltContactSetPairValuesWrite(const BoltContactSet *c, BoltJSON *j, const char key[], const PetscInt vi[], const PetscReal vr[])
 {
   PetscFunctionBeginUser;
-  PetscCall(BoltJSONBeginObject(j, key));
-  for (PetscInt p = 0; p < c->npairs; p++) {
-    if (vi) PetscCall(BoltJSONInt(j, c->pairName[p], vi[p]));
-    else PetscCall(BoltJSONReal(j, c->pairName[p], vr[p]));
-  }
-  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONNamedValues(j, key, c->npairs, c->pairName, vi, vr));
   PetscFunctionReturn(0);
 }

@@ -73,12 +73,7 @@ const char *BoltMeshSupportGroup(const BoltMesh *m)
 PetscErrorCode BoltMeshPartValuesWrite(const BoltMesh *m, BoltJSON *j, const char key[], const PetscInt vi[], const PetscReal vr[])
 {
   PetscFunctionBeginUser;
-  PetscCall(BoltJSONBeginObject(j, key));
-  for (PetscInt p = 0; p < m->nparts; p++) {
-    if (vi) PetscCall(BoltJSONInt(j, m->partName[p], vi[p]));
-    else PetscCall(BoltJSONReal(j, m->partName[p], vr[p]));
-  }
-  PetscCall(BoltJSONEndObject(j));
+  PetscCall(BoltJSONNamedValues(j, key, m->nparts, m->partName, vi, vr));
   PetscFunctionReturn(0);
 }
 

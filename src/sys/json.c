@@ -105,3 +105,17 @@ PetscErrorCode BoltJSONClose(BoltJSON **jp)
   PetscCall(PetscFree(*jp));
   PetscFunctionReturn(0);
 }
+
+/* An object of one value per name (the parts', the contact pairs'): the integers vi, or else the
+   reals vr. */
+PetscErrorCode BoltJSONNamedValues(BoltJSON *j, const char key[], PetscInt n, const char names[][BOLTROM_NAME_LEN], const PetscInt vi[], const PetscReal vr[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltJSONBeginObject(j, key));
+  for (PetscInt i = 0; i < n; i++) {
+    if (vi) PetscCall(BoltJSONInt(j, names[i], vi[i]));
+    else PetscCall(BoltJSONReal(j, names[i], vr[i]));
+  }
+  PetscCall(BoltJSONEndObject(j));
+  PetscFunctionReturn(0);
+}
