@@ -70,6 +70,7 @@ struct _n_BoltRun {
   BoltLoadSet      *loads;
   Vec               u;
   Mat               Ktied;
+  BV                rigid; /* a free model's rigid motions (BoltRunRigidModes), made once for every analysis */
   BoltOperator     *fomOp, *romOp;
   BoltNewmark      *fomNm, *romNm;
   BoltPreloadState *fomPreload;

@@ -66,6 +66,7 @@ static PetscErrorCode BoltRunDestroy(BoltRun *r)
   PetscCall(VecDestroy(&r->sum.Mx));
   PetscCall(VecDestroy(&r->u));
   PetscCall(MatDestroy(&r->Ktied));
+  PetscCall(BVDestroy(&r->rigid));
   PetscCall(BoltNewmarkDestroy(&r->fomNm));
   PetscCall(BoltPreloadStateDestroy(&r->fomPreload));
   PetscCall(BoltNewmarkDestroy(&r->romNm));

@@ -56,6 +56,16 @@ static PetscErrorCode BoltRunNewmarkCreate(BoltRun *r, BoltOperator *op, BoltNew
   PetscFunctionReturn(0);
 }
 
+/* A free model's rigid motions, made the first time an analysis asks and shared by the tied
+   analyses and the FOM; NULL for a held model. */
+static PetscErrorCode BoltRunRigidModes(BoltRun *r, BV *R)
+{
+  PetscFunctionBeginUser;
+  if (BoltMeshIsFree(r->mesh) && !r->rigid) PetscCall(BoltAssemblerRigidModes(r->asmb, &r->rigid));
+  *R = r->rigid;
+  PetscFunctionReturn(0);
+}
+
 /* The tied joint (every contact element active with its penalty stiffness): static solve,
    eigenfrequencies, and the checks and exports of the assembled model. */
 PetscErrorCode BoltRunTied(BoltRun *r)
@@ -67,7 +77,7 @@ PetscErrorCode BoltRunTied(BoltRun *r)
 
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, &M));
-  if (BoltMeshIsFree(r->mesh) && (r->opt.staticSolve || r->opt.nev > 0)) PetscCall(BoltAssemblerRigidModes(r->asmb, &R));
+  if (r->opt.staticSolve || r->opt.nev > 0) PetscCall(BoltRunRigidModes(r, &R));
   if (BoltContactSetPairCount(r->contact)) PetscCall(BoltContactSetAssembleTied(r->contact, K, &r->Ktied));
   else {
     PetscCall(PetscObjectReference((PetscObject)K));
@@ -102,7 +112,6 @@ PetscErrorCode BoltRunTied(BoltRun *r)
   if (r->opt.verifyFields) PetscCall(BoltVerifyFields(r->mesh, r->Ktied, M, r->u, r->opt.verifyField, &s->x, &s->Kx, &s->Mx));
   if (r->opt.checkRigid) PetscCall(BoltCheckRigid(r->asmb, r->u, s->rigid));
   s->freeFree = (PetscBool)(R != NULL);
-  PetscCall(BVDestroy(&R));
   PetscFunctionReturn(0);
 }
 
@@ -116,11 +125,10 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltFOMCreate(r->asmb, contact, r->loads, PETSC_TRUE, &r->fomOp));
   PetscCall(BoltRunNewmarkCreate(r, r->fomOp, &r->fomNm));
   PetscCall(BoltNewmarkSetBolts(r->fomNm, r->loads));
-  if (BoltMeshIsFree(r->mesh)) {
+  {
     BV R;
-    PetscCall(BoltAssemblerRigidModes(r->asmb, &R));
-    PetscCall(BoltNewmarkSetRigidModes(r->fomNm, R));
-    PetscCall(BVDestroy(&R));
+    PetscCall(BoltRunRigidModes(r, &R));
+    if (R) PetscCall(BoltNewmarkSetRigidModes(r->fomNm, R));
   }
   PetscCall(PetscLogStagePush(BOLT_STAGE_PRELOAD));
   PetscCall(BoltNewmarkPreload(r->fomNm));
