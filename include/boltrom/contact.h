@@ -83,6 +83,7 @@ PetscErrorCode BoltContactStateDissipated(BoltContactState *, PetscReal *);
 PetscErrorCode BoltContactStateSetTotals(BoltContactState *, PetscReal, PetscReal);
 PetscErrorCode BoltContactStateSetActive(BoltContactState *, const PetscBool[], const PetscBool[]);
 PetscErrorCode BoltContactStateStiffness(BoltContactState *, Mat *);
+PetscErrorCode BoltContactStateAssembleLinearised(BoltContactState *, Mat, Mat *, PetscInt[3]);
 PetscErrorCode BoltContactStateNormalForcePerPair(BoltContactState *, PetscReal[]);
 #define BOLT_PAIR_FORCE 4 /* per pair: the force on side b (x, y, z) and the normal force */
 PetscErrorCode BoltContactStatePairForces(BoltContactState *, PetscReal[]);

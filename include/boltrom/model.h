@@ -91,7 +91,7 @@ PetscErrorCode BoltLoadSetDestroy(BoltLoadSet **);
 
 /* ------------------------------------------------------------------ analysis.c */
 PetscErrorCode BoltStaticSolve(Mat, Vec, Vec, const char[]);
-PetscErrorCode BoltModalSolve(Mat, Mat, BV, PetscInt, const char[], PetscInt *, PetscReal[]);
+PetscErrorCode BoltModalSolve(Mat, Mat, BV, PetscBool, PetscInt, const char[], PetscInt *, PetscReal[]);
 /* rigid.c: a free model (no clamp, no support): its rigid motions, inertia relief, the shift */
 PetscBool      BoltMeshIsFree(const BoltMesh *);
 PetscErrorCode BoltMeshRigidMotion(BoltMesh *, PetscInt, const PetscReal[3], Vec);

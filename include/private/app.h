@@ -29,7 +29,10 @@ struct _n_BoltRunOptions {
   char      exportDir[PETSC_MAX_PATH_LEN]; /* tied K and M, full and reduced, for petsc4py */
   PetscInt  verifyField;                   /* 0 smooth, 1 linear */
   PetscInt  nev;
+  PetscInt  modalContact; /* BOLT_MODAL_TIED or _PRELOAD: the contact state the modes are about */
 };
+
+enum { BOLT_MODAL_TIED, BOLT_MODAL_PRELOAD };
 
 struct _n_BoltSummary {
   BoltMesh       *mesh;
@@ -46,9 +49,12 @@ struct _n_BoltSummary {
   Vec             x, Kx, Mx;                     /* -verify_fields, or NULL */
   PetscInt        nev, nconv;                    /* "modal" if nev > 0 */
   PetscReal       freq[100], tModal;
+  PetscInt        modalContact;                  /* BOLT_MODAL_*, and with _PRELOAD */
+  PetscInt        modalPoints[3];                /* the closed, the stuck and all contact points */
   PetscBool       checkRigid;                    /* "rigid_residual_per_part" */
   PetscReal       rigid[BOLTROM_MAX_PARTS];
-  BoltNewmark    *fomRun;                        /* "preload" and "fom": the FOM's run */
+  BoltNewmark    *preloadRun;                    /* "preload": the FOM's preload (-fom, -modal_contact preload) */
+  BoltNewmark    *fomRun;                        /* "fom": the FOM's run */
   PetscReal       preloadForce[BOLTROM_MAX_PAIRS]; /* the FOM's preloaded state, before its transient */
   PetscReal       studTension; /* the FOM's preloaded stud tension [N] (BoltLoadSetStudTension) */
   PetscBool       hasStud;     /* an element layer lies between the preload layers */

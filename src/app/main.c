@@ -53,6 +53,7 @@ static PetscErrorCode BoltRunSetUp(BoltRun *r)
   s->u           = r->u;
   s->staticSolve = r->opt.staticSolve;
   s->nev         = r->opt.nev;
+  s->modalContact = r->opt.modalContact;
   s->checkRigid  = r->opt.checkRigid;
   s->romCheckS0  = r->opt.romCheckS0;
   PetscFunctionReturn(0);
@@ -116,7 +117,8 @@ static PetscErrorCode BoltRunMain(void)
   r.sum.tSetUp = t1 - t0;
 
   PetscCall(BoltRunTied(&r));
-  if (r.opt.fom) PetscCall(BoltRunFOM(&r));
+  /* the modes about the preload need the FOM's preloaded state, with or without its transient */
+  if (r.opt.fom || (r.opt.nev > 0 && r.opt.modalContact == BOLT_MODAL_PRELOAD)) PetscCall(BoltRunFOM(&r));
   if (r.opt.rom) PetscCall(BoltRunROM(&r));
   PetscCall(BoltOptionsCheckUnused(r.comm, BOLT_OPTIONS_FINAL)); /* the safety net, before anything is written */
 

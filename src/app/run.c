@@ -18,6 +18,7 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   o->romCheckS0   = PETSC_FALSE;
   o->exportDir[0] = '\0';
   o->verifyField  = 0;
+  o->modalContact = BOLT_MODAL_TIED;
   PetscOptionsBegin(comm, NULL, "Run", "boltrom");
   PetscCall(PetscOptionsString("-output_dir", "Folder for the HDF5/XDMF results (created if needed)", NULL, o->outputDir, o->outputDir, sizeof(o->outputDir), NULL));
   PetscCall(PetscOptionsString("-output_name", "Base name of the HDF5/XDMF files", NULL, o->outputName, o->outputName, sizeof(o->outputName), NULL));
@@ -28,7 +29,11 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));
   PetscCall(PetscOptionsString("-export_matrices", "Folder for K_tied.petsc and M.petsc (with -rom also rom_K_tied.petsc, rom_M.petsc), PETSc binary; read by python/compare_eigen.py", NULL, o->exportDir, o->exportDir, sizeof(o->exportDir), NULL));
   PetscCall(PetscOptionsBool("-rom_check_s0", "Check the ROM against the FOM at s = s0 with every contact point active (exact for an order-1 ROM without interface reduction)", NULL, o->romCheckS0, &o->romCheckS0, NULL));
-  PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies of the tied joint (0: none)", NULL, o->nev, &o->nev, NULL));
+  PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies (0: none), of the joint in the state -modal_contact", NULL, o->nev, &o->nev, NULL));
+  {
+    const char *states[] = {"tied", "preload"};
+    PetscCall(PetscOptionsEList("-modal_contact", "Modes of the tied joint (every contact element active) or about the FOM's preload (open pairs carry nothing, slipping ones no shear)", NULL, states, 2, states[o->modalContact], &o->modalContact, NULL));
+  }
   PetscCall(PetscOptionsBool("-verify_fields", "Also write K x and M x for a fixed smooth field x (checks across rank counts)", NULL, o->verifyFields, &o->verifyFields, NULL));
   {
     const char *kinds[] = {"smooth", "linear"};
@@ -66,6 +71,33 @@ static PetscErrorCode BoltRunRigidModes(BoltRun *r, BV *R)
   PetscFunctionReturn(0);
 }
 
+/* The nev lowest eigenfrequencies of K (the tied joint's, or linearised about the preload), a free
+   model's rigid motions deflated; printed with the contact state they are about. */
+static PetscErrorCode BoltRunModal(BoltRun *r, Mat K, BV R)
+{
+  BoltSummary   *s       = &r->sum;
+  const PetscBool preload = (PetscBool)(r->opt.modalContact == BOLT_MODAL_PRELOAD);
+  PetscLogDouble ts, te;
+  Mat            M;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltAssemblerGetMatrices(r->asmb, NULL, &M));
+  PetscCall(PetscLogStagePush(BOLT_STAGE_MODAL));
+  PetscCall(PetscTime(&ts));
+  PetscCall(BoltModalSolve(K, M, R, preload, r->opt.nev, "modal_", &s->nconv, s->freq));
+  if (R) PetscCall(BoltRigidFrequencies(R, K, s->rigidFreq));
+  PetscCall(PetscTime(&te));
+  s->tModal = te - ts;
+  PetscCall(PetscLogStagePop());
+  if (preload) PetscCall(PetscPrintf(r->comm, "Eigenfrequencies (about the preload: %" PetscInt_FMT " of %" PetscInt_FMT " contact points closed, %" PetscInt_FMT " of them stuck%s) [Hz]:", s->modalPoints[0], s->modalPoints[2], s->modalPoints[1], R ? "; free-free: the 6 rigid-body modes apart" : ""));
+  else PetscCall(PetscPrintf(r->comm, R ? "Eigenfrequencies (tied, free-free: the 6 rigid-body modes apart) [Hz]:" : "Eigenfrequencies (tied) [Hz]:"));
+  for (PetscInt i = 0; i < s->nconv; i++) PetscCall(PetscPrintf(r->comm, " %.6f", (double)s->freq[i]));
+  PetscCall(PetscPrintf(r->comm, " (%.2f s)\n", (double)s->tModal));
+  if (R) PetscCall(PetscPrintf(r->comm, "  rigid-body modes under K (should be 0) [Hz]: largest %.3e\n", (double)s->rigidFreq[5]));
+  s->freeFree = (PetscBool)(R != NULL);
+  PetscFunctionReturn(0);
+}
+
 /* The tied joint (every contact element active with its penalty stiffness): static solve,
    eigenfrequencies, and the checks and exports of the assembled model. */
 PetscErrorCode BoltRunTied(BoltRun *r)
@@ -77,7 +109,7 @@ PetscErrorCode BoltRunTied(BoltRun *r)
 
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, &M));
-  if (r->opt.staticSolve || r->opt.nev > 0) PetscCall(BoltRunRigidModes(r, &R));
+  if (r->opt.staticSolve || (r->opt.nev > 0 && r->opt.modalContact == BOLT_MODAL_TIED)) PetscCall(BoltRunRigidModes(r, &R));
   if (BoltContactSetPairCount(r->contact)) PetscCall(BoltContactSetAssembleTied(r->contact, K, &r->Ktied));
   else {
     PetscCall(PetscObjectReference((PetscObject)K));
@@ -96,33 +128,37 @@ PetscErrorCode BoltRunTied(BoltRun *r)
     PetscCall(PetscPrintf(r->comm, "Static (tied): probe u_%c at '%s' = %.10e m under %g N (%.2f s)\n", "xyz"[BoltLoadSetProbeComponent(r->loads)], BoltLoadSetProbeGroup(r->loads), (double)s->probe, (double)BoltLoadSetLoadForce(r->loads), (double)s->tStatic));
   }
   if (r->opt.exportDir[0]) PetscCall(BoltExportTied(r->opt.exportDir, r->Ktied, M));
-  if (r->opt.nev > 0) {
-    PetscCall(PetscLogStagePush(BOLT_STAGE_MODAL));
-    PetscCall(PetscTime(&ts));
-    PetscCall(BoltModalSolve(r->Ktied, M, R, r->opt.nev, "modal_", &s->nconv, s->freq));
-    if (R) PetscCall(BoltRigidFrequencies(R, r->Ktied, s->rigidFreq));
-    PetscCall(PetscTime(&te));
-    s->tModal = te - ts;
-    PetscCall(PetscLogStagePop());
-    PetscCall(PetscPrintf(r->comm, R ? "Eigenfrequencies (tied, free-free: the 6 rigid-body modes apart) [Hz]:" : "Eigenfrequencies (tied) [Hz]:"));
-    for (PetscInt i = 0; i < s->nconv; i++) PetscCall(PetscPrintf(r->comm, " %.6f", (double)s->freq[i]));
-    PetscCall(PetscPrintf(r->comm, " (%.2f s)\n", (double)s->tModal));
-    if (R) PetscCall(PetscPrintf(r->comm, "  rigid-body modes under K (should be 0) [Hz]: largest %.3e\n", (double)s->rigidFreq[5]));
-  }
+  if (r->opt.nev > 0 && r->opt.modalContact == BOLT_MODAL_TIED) PetscCall(BoltRunModal(r, r->Ktied, R));
   if (r->opt.verifyFields) PetscCall(BoltVerifyFields(r->mesh, r->Ktied, M, r->u, r->opt.verifyField, &s->x, &s->Kx, &s->Mx));
   if (r->opt.checkRigid) PetscCall(BoltCheckRigid(r->asmb, r->u, s->rigid));
-  s->freeFree = (PetscBool)(R != NULL);
+  s->freeFree = (PetscBool)(s->freeFree || R != NULL);
   PetscFunctionReturn(0);
 }
 
-/* The full-order model with contact: static preload, then the transient. */
+/* The modes linearised about the FOM's preloaded contact state (-modal_contact preload). */
+static PetscErrorCode BoltRunPreloadModal(BoltRun *r)
+{
+  Mat K, Kpre;
+  BV  R;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltRunRigidModes(r, &R));
+  PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, NULL));
+  PetscCall(BoltContactStateAssembleLinearised(BoltOperatorState(r->fomOp), K, &Kpre, r->sum.modalPoints));
+  PetscCall(BoltRunModal(r, Kpre, R));
+  PetscCall(MatDestroy(&Kpre));
+  PetscFunctionReturn(0);
+}
+
+/* The full-order model with contact: static preload, the modes about it (-modal_contact preload),
+   then the transient (-fom; without it the preload is solved for the modes alone). */
 PetscErrorCode BoltRunFOM(BoltRun *r)
 {
   BoltContactSet *contact = r->contact;
   BoltSummary    *s       = &r->sum;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltFOMCreate(r->asmb, contact, r->loads, PETSC_TRUE, &r->fomOp));
+  PetscCall(BoltFOMCreate(r->asmb, contact, r->loads, r->opt.fom, &r->fomOp));
   PetscCall(BoltRunNewmarkCreate(r, r->fomOp, &r->fomNm));
   PetscCall(BoltNewmarkSetBolts(r->fomNm, r->loads));
   {
@@ -162,7 +198,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
     PetscCall(BoltNewmarkGetModel(r->fomNm, NULL, &dual, &q));
     PetscCall(BoltNewmarkGetStaticSolve(r->fomNm, &outer, &inner));
     PetscCall(BoltDualGetLastConvergence(dual, &s->preloadPenetration, &s->preloadChange));
-    if (r->opt.rom) PetscCall(BoltPreloadStateCreate(r->fomOp, q, outer, inner, &r->fomPreload)); /* the ROM's offline phase starts from it */
+    if (r->opt.rom && r->opt.fom) PetscCall(BoltPreloadStateCreate(r->fomOp, q, outer, inner, &r->fomPreload)); /* the ROM's offline phase starts from it */
     if (BoltLoadSetHasPreload(r->loads) && !BoltLoadSetBoltCount(r->loads)) { /* the clamp force read from the stud, not from the contact forces */
       Mat K;
       PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, NULL));
@@ -170,6 +206,9 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
       if (s->hasStud) PetscCall(PetscPrintf(r->comm, "  stud tension beyond the preload layers: %.1f N\n", (double)s->studTension));
     }
   }
+  s->preloadRun = r->fomNm;
+  if (r->opt.nev > 0 && r->opt.modalContact == BOLT_MODAL_PRELOAD) PetscCall(BoltRunPreloadModal(r));
+  if (!r->opt.fom) PetscFunctionReturn(0);
   PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));
   PetscCall(BoltNewmarkRun(r->fomNm));
   PetscCall(PetscLogStagePop());

@@ -51,6 +51,12 @@ static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
   }
   if (s->nev > 0) {
     PetscCall(BoltJSONBeginObject(j, "modal"));
+    PetscCall(BoltJSONString(j, "contact_state", s->modalContact == BOLT_MODAL_PRELOAD ? "preload" : "tied"));
+    if (s->modalContact == BOLT_MODAL_PRELOAD) {
+      PetscCall(BoltJSONInt(j, "closed_points", s->modalPoints[0]));
+      PetscCall(BoltJSONInt(j, "stuck_points", s->modalPoints[1]));
+      PetscCall(BoltJSONInt(j, "contact_points", s->modalPoints[2]));
+    }
     PetscCall(BoltJSONRealArray(j, "frequencies_hz", s->nconv, s->freq));
     PetscCall(BoltJSONInt(j, "rigid_modes_deflated", s->freeFree ? 6 : 0));
     if (s->freeFree) PetscCall(BoltJSONRealArray(j, "rigid_mode_frequencies_hz", 6, s->rigidFreq));
@@ -61,7 +67,7 @@ static PetscErrorCode SummaryTied(BoltJSON *j, const BoltSummary *s)
   PetscFunctionReturn(0);
 }
 
-/* The FOM's preloaded state and its run. */
+/* The FOM's preloaded state, and its run if it ran. */
 static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
 {
   const BoltContactSet *contact = s->contact;
@@ -70,7 +76,7 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONBeginObject(j, "preload"));
   PetscCall(BoltJSONReal(j, "force", BoltLoadSetPreloadForce(s->loads)));
   if (s->hasStud) PetscCall(BoltJSONReal(j, "stud_tension", s->studTension));
-  PetscCall(BoltNewmarkPreloadSummaryWrite(s->fomRun, j));
+  PetscCall(BoltNewmarkPreloadSummaryWrite(s->preloadRun, j));
   PetscCall(BoltJSONReal(j, "penetration_max", s->preloadPenetration));
   PetscCall(BoltJSONReal(j, "multiplier_change", s->preloadChange));
   PetscCall(BoltJSONReal(j, "traction_normal_min", s->tractionStats[0]));
@@ -80,6 +86,7 @@ static PetscErrorCode SummaryFOM(BoltJSON *j, const BoltSummary *s)
   PetscCall(BoltJSONInt(j, "sliding_points", s->preloadSliding));
   PetscCall(BoltContactSetPairValuesWrite(contact, j, "normal_force_per_pair", NULL, s->preloadForce));
   PetscCall(BoltJSONEndObject(j));
+  if (!s->fomRun) PetscFunctionReturn(0);
   PetscCall(BoltJSONBeginObject(j, "fom"));
   PetscCall(BoltNewmarkSummaryWrite(s->fomRun, j, PETSC_TRUE));
   PetscCall(BoltJSONEndObject(j));
@@ -127,7 +134,7 @@ PetscErrorCode BoltSummaryWrite(MPI_Comm comm, const char path[], const BoltSumm
   PetscCall(SummaryModel(j, s, size));
   PetscCall(BoltSummaryWriteLoad(j, s));
   PetscCall(SummaryTied(j, s));
-  if (s->fomRun) PetscCall(SummaryFOM(j, s));
+  if (s->preloadRun) PetscCall(SummaryFOM(j, s));
   if (s->rom) PetscCall(SummaryROM(j, s));
   PetscCall(BoltJSONReal(j, "setup_s", s->tSetUp));
   PetscCall(BoltJSONClose(&j));

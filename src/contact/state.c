@@ -256,6 +256,17 @@ PetscErrorCode BoltContactStateStiffness(BoltContactState *s, Mat *Kc)
   PetscFunctionReturn(0);
 }
 
+/* K + Kc as a new symmetric matrix named name. */
+static PetscErrorCode AddContactStiffness(Mat K, Mat Kc, const char name[], Mat *Ksum)
+{
+  PetscFunctionBeginUser;
+  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Ksum));
+  PetscCall(MatAXPY(*Ksum, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatSetOption(*Ksum, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(PetscObjectSetName((PetscObject)*Ksum, name));
+  PetscFunctionReturn(0);
+}
+
 /* K + Kc with every contact element active (the tied joint), from a state of its own. */
 PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
 {
@@ -266,11 +277,47 @@ PetscErrorCode BoltContactSetAssembleTied(BoltContactSet *c, Mat K, Mat *Ktied)
   PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_ASSEMBLY, 0, 0, 0, 0));
   PetscCall(BoltContactStateCreate(c, &s)); /* every point active */
   PetscCall(BoltContactStateStiffness(s, &Kc));
-  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Ktied));
-  PetscCall(MatAXPY(*Ktied, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
-  PetscCall(MatSetOption(*Ktied, MAT_SYMMETRIC, PETSC_TRUE));
-  PetscCall(PetscObjectSetName((PetscObject)*Ktied, "K_tied"));
+  PetscCall(AddContactStiffness(K, Kc, "K_tied", Ktied));
   PetscCall(BoltContactStateDestroy(&s));
+  PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_ASSEMBLY, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* K + Kc linearised about the state, for small vibrations about it (a preloaded joint): each
+   closed point's normal penalty, and where it sticks its tangential stiffness (the law's: the
+   penalty, or coulomb's elastic stick). None where it slides or slips, not even coulomb's across
+   the slip (that is the return map's, for a slip that goes on; a vibration reverses it), and none
+   at a pair without friction (-contact_<pair>_friction 0), which then carries normal load only.
+   n[0..2]: the closed and the sticking points, and all points (global). The state is unchanged. */
+PetscErrorCode BoltContactStateAssembleLinearised(BoltContactState *s, Mat K, Mat *Klin, PetscInt n[3])
+{
+  BoltContactSet *c = s->set;
+  PetscReal      *Ke;
+  PetscInt        mine[2] = {0, 0};
+  Mat             Kc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_ASSEMBLY, 0, 0, 0, 0));
+  PetscCall(PetscMalloc1(576 * c->nelem + 1, &Ke));
+  for (PetscInt e = 0; e < c->nelem; e++) {
+    const PetscInt  pair         = c->elem[e].pair;
+    const PetscBool frictionless = (PetscBool)(BoltContactSetHasFriction(c) && c->friction[pair] == 0);
+    PetscBool       slides[4];
+    for (PetscInt q = 0; q < 4; q++) {
+      const PetscInt gp = 4 * e + q;
+      slides[q]         = (PetscBool)(s->released[gp] || frictionless);
+      mine[0] += s->active[gp] ? 1 : 0;
+      mine[1] += (s->active[gp] && !slides[q]) ? 1 : 0;
+    }
+    PetscCall(BoltContactSetElementStiffness(c, e, s->epsN[pair], s->law->ops.stickStiffness(s, pair), &s->active[4 * e], slides, NULL, &Ke[576 * e]));
+  }
+  PetscCall(MPIU_Allreduce(mine, n, 2, MPIU_INT, MPI_SUM, BoltMeshComm(c->mesh)));
+  n[2] = c->ngpGlobal;
+  PetscCall(BoltContactSetStiffnessMatrix(c, &Kc));
+  PetscCall(MatSetValuesCOO(Kc, (PetscScalar *)Ke, INSERT_VALUES));
+  PetscCall(PetscFree(Ke));
+  PetscCall(AddContactStiffness(K, Kc, "K_preloaded", Klin));
+  PetscCall(MatDestroy(&Kc));
   PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_ASSEMBLY, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -60,8 +60,9 @@ PetscErrorCode BoltModalSetFromOptions(MPI_Comm comm, PetscInt nev, const char p
 
 /* The nev lowest eigenfrequencies [Hz] of K x = w^2 M x, by shift-and-invert about 0; for a free
    model (R: its rigid motions, else NULL) the nev lowest elastic ones, R deflated and the shift
-   -BoltRigidShift() keeping the factorisation regular. */
-PetscErrorCode BoltModalSolve(Mat K, Mat M, BV R, PetscInt nev, const char prefix[], PetscInt *nconv, PetscReal freq[])
+   -BoltRigidShift() keeping the factorisation regular. shift: that shift even for a held model,
+   whose K may be singular all the same (a part held by frictionless contact slides freely). */
+PetscErrorCode BoltModalSolve(Mat K, Mat M, BV R, PetscBool shift, PetscInt nev, const char prefix[], PetscInt *nconv, PetscReal freq[])
 {
   EPS eps;
 
@@ -79,7 +80,7 @@ PetscErrorCode BoltModalSolve(Mat K, Mat M, BV R, PetscInt nev, const char prefi
     PetscCall(EPSSetDeflationSpace(eps, 6, rigid));
     for (PetscInt k = 0; k < 6; k++) PetscCall(VecDestroy(&rigid[k]));
   }
-  PetscCall(ModalSetUp(eps, nev, R ? -BoltRigidShift() : 0.0));
+  PetscCall(ModalSetUp(eps, nev, (R || shift) ? -BoltRigidShift() : 0.0));
   PetscCall(EPSSolve(eps));
   PetscCall(EPSGetConverged(eps, nconv));
   PetscCheck(*nconv >= nev, PetscObjectComm((PetscObject)K), PETSC_ERR_NOT_CONVERGED, "Eigensolver found %" PetscInt_FMT " of %" PetscInt_FMT " eigenpairs: raise -%seps_max_it or check the model", *nconv, nev, prefix ? prefix : "");
