@@ -208,7 +208,10 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   }
   s->preloadRun = r->fomNm;
   if (r->opt.nev > 0 && r->opt.modalContact == BOLT_MODAL_PRELOAD) PetscCall(BoltRunPreloadModal(r));
-  if (!r->opt.fom) PetscFunctionReturn(0);
+  if (!r->opt.fom) { /* solved for the modes alone: no transient, and the ROM must not take it for a FOM run */
+    PetscCall(BoltNewmarkReleaseSolver(r->fomNm));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));
   PetscCall(BoltNewmarkRun(r->fomNm));
   PetscCall(PetscLogStagePop());
@@ -233,7 +236,7 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   {
     PetscInt nsnap = 0;
     Vec     *snap  = NULL;
-    if (r->fomNm) PetscCall(BoltNewmarkGetSnapshots(r->fomNm, &nsnap, &snap, NULL, NULL));
+    if (s->fomRun) PetscCall(BoltNewmarkGetSnapshots(s->fomRun, &nsnap, &snap, NULL, NULL));
     PetscCall(BoltROMSetTraining(r->rom, r->fomPreload, nsnap, snap));
   }
   PetscCall(BoltROMSetUp(r->rom, r->asmb, r->contact, r->loads));
@@ -251,7 +254,7 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   PetscCall(BoltNewmarkRun(r->romNm));
   PetscCall(PetscLogStagePop());
   PetscCall(BoltNewmarkView(r->romNm, PETSC_VIEWER_STDOUT_(r->comm)));
-  if (r->fomNm) {
+  if (s->fomRun) {
     const PetscReal *pf, *pr;
     PetscInt         n;
     PetscReal        tf, tr;
