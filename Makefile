@@ -132,6 +132,13 @@ friction: deps all
 	$(PYTHON) scripts/friction-scenes --direction z --rom --rom-train 1000 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 3 --amplitudes 10 30 100 300 1000 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --level 1 --np 2 --rom --rom-train 300 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 8 --amplitudes 30 100 --ringdown --results
 
+# The Brake-Reuss beam: its modes about the preloaded state (stuck, and the lap frictionless) at
+# levels 0.5, 1 and 1.5, and its backbone from ring-downs with friction at level 0.5
+# (output/brb-*, docs/results.md; about 25 min).
+brb: deps all
+	$(PYTHON) scripts/brb-modes --np $(NP) --levels 0.5 1 1.5 --results
+	$(PYTHON) scripts/brb-backbone --np $(NP) --level 0.5 --results
+
 # The axial load with friction against CalculiX at level 1, the load point held (16 increments)
 # and free (8), their JSON in docs/data/ and docs/ccx-friction-L1.png (docs/verification.md
 # section 9; about 35 min, most of it ccx's).
@@ -154,5 +161,5 @@ options: deps all
 clean:
 	rm -rf build bin
 
-.PHONY: all deps run test mesh clean tests-c verify bench stress stress-strict paper options friction ccx-friction
+.PHONY: all deps run test mesh clean tests-c verify bench stress stress-strict paper options friction ccx-friction brb
 endif

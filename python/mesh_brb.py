@@ -18,6 +18,8 @@ Groups (the joint's, per bolt where a bolt has its own):
   pairs    head_washer, washer_beam2, beam2_beam1 (the lap), beam1_washer, washer_nut
   preload  preload_B_lower / preload_B_upper, B = 1, 2, 3 from -x to +x: one shank element layer
            half-way between the washers, as the joint's
+  ends     the two end faces (x = -360 and 360 mm): a load spread on them by area bends the beam
+           in its symmetric modes (with the rigid motion that balances it)
   points   load_point (beam2's end: x = 360 mm, y = 0, z = 25.4 mm), end_point (beam1's end at
            x = -360 mm, same y and z)
 No clamp: the beam is free-free (-clamp false).
@@ -143,6 +145,9 @@ def build_brb(level=1.0, n_theta=None):
         near = np.all(np.hypot(X[..., 0] - ctr[0], X[..., 1] - ctr[1]) < G["r_shank"] + TOL, axis=1)
         for side, z0 in zip(("lower", "upper"), z["pre"]):
             mesh.surfaces["preload_%d_%s" % (b, side)] = F[near & np.all(np.abs(X[..., 2] - z0) < TOL, axis=1)]
+    xe = (G["beam1_x"][0], G["beam2_x"][1])
+    mesh.surfaces["ends"] = np.concatenate([faces(mesh, "beam1", lambda x, y, zz: np.abs(x - xe[0]) < TOL),
+                                            faces(mesh, "beam2", lambda x, y, zz: np.abs(x - xe[1]) < TOL)])
     mesh.points["load_point"] = find_node(mesh, "beam2", (G["beam2_x"][1], 0.0, 2 * G["t"]))
     mesh.points["end_point"] = find_node(mesh, "beam1", (G["beam1_x"][0], 0.0, 2 * G["t"]))
     mesh.info = dict(divisions=c, bolts=len(ctrs), bolt_x=list(G["bolt_x"]), preload_z=list(z["pre"]),
