@@ -416,7 +416,8 @@ def add_cycle_arguments(ap):
                    help="joint: the cycle's amplitude, N along x at the load point (default 2400: beyond the plate interface's "
                         "macro-slip near 2.1 kN, as the friction comparison's end load)")
     g.add_argument("--cycle-quarter", type=int, default=3,
-                   help="joint: increments per quarter cycle (default 3; the cycle takes 5 quarters)")
+                   help="joint: increments per quarter cycle (default 3; the cycle takes 5 quarters; with 6 ccx iterates "
+                        "without end at the second zero crossing)")
     g.add_argument("--cycle-max-iterations", type=int, default=600,
                    help="stop ccx when one increment takes more Newton iterations (default 600; on the joint converging "
                         "increments take 11 - 206, on the blocks at most 20)")
