@@ -97,6 +97,7 @@ PetscBool      BoltMeshIsFree(const BoltMesh *);
 PetscErrorCode BoltMeshRigidMotion(BoltMesh *, PetscInt, const PetscReal[3], Vec);
 PetscErrorCode BoltAssemblerRigidModes(BoltAssembler *, BV *);
 PetscErrorCode BoltRigidProject(BV, Vec);
+PetscErrorCode BoltRigidRelieve(BV, Mat, Vec);
 PetscErrorCode BoltRigidFrequencies(BV, Mat, PetscReal[6]);
 PetscReal      BoltRigidShift(void);
 PetscErrorCode BoltStaticSolveFree(Mat, Mat, BV, Vec, Vec, const char[], PetscInt *);

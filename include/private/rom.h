@@ -136,6 +136,9 @@ struct _n_BoltROM {
      a bound on the rounding between the normal row and the whole gap's normal part */
   PetscReal      *wholeGapBound;     /* per local point */
   BoltContactSet *contact;
+  BV              rigid;         /* offline: a free model's rigid motions (mass-orthonormal, the FOM's layout), NULL if held */
+  PetscInt        nRigid;        /* rigid motions appended to the basis (6 free-free, else 0) */
+  PetscScalar    *rigidr;        /* 6 n, column-major: V' R, a free model's rigid motions in the ROM's coordinates (kept in the ROM file), NULL if held */
   /* offline figures */
   PetscInt        order, ninputs, nCCM, nJIM, rankPerOrder[8];
   PetscReal       s0, tOffline, tInputs, tBasis, tProject, tFactor, tSolve, tOrth, tInterface;

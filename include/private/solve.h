@@ -32,6 +32,7 @@ struct BoltOperator_s {
   PetscBool         keepStructural; /* the dual loop keeps K + a1 M + a4 C summed for its factorisations (small dense matrices: the ROM) */
   char              prefix[16]; /* options prefix of its solver: fom_ or rom_ */
   Mat               M, C, K;
+  Mat               Krigid;        /* added to K in static solves only: a free ROM's stiffness on its rigid motions (BoltOperatorSetRigidStiffness) */
   PetscReal         rayleigh[2];   /* C = rayleigh[0] M + rayleigh[1] K (BoltOperatorSetDamping) */
   Vec               load, preload; /* external load pattern and preload, in its coordinates */
   BoltContactSet   *contact;  /* the shared geometry */

@@ -12,14 +12,12 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscCall(BoltMeshCreate(r->comm, &r->mesh));
   PetscCall(BoltMeshSetFromOptions(r->mesh));
   PetscCheck(!r->opt.checkRigid || !BoltMeshClampGroup(r->mesh), r->comm, PETSC_ERR_USER_INPUT, "-check_rigid needs the free-free model: add -clamp false");
-  PetscCheck(!r->opt.rom || !BoltMeshIsFree(r->mesh), r->comm, PETSC_ERR_SUP, "The reduced model of a free-free structure is not available yet (its static shapes would need inertia relief): run the full model alone with -rom false, or hold the model with a clamp or -support_group");
   PetscCall(BoltAssemblerCreate(r->mesh, &r->asmb));
   PetscCall(BoltAssemblerSetFromOptions(r->asmb));
   PetscCall(BoltContactSetCreate(r->mesh, &r->contact));
   PetscCall(BoltContactSetSetFromOptions(r->contact));
   PetscCall(BoltLoadSetCreate(r->mesh, &r->loads));
   PetscCall(BoltLoadSetSetFromOptions(r->loads));
-  PetscCheck(!r->opt.rom || !BoltLoadSetBoltCount(r->loads), r->comm, PETSC_ERR_SUP, "The reduced model of several bolts (-preload_bolts) is not available yet (it keeps one preload input): run the full model alone with -rom false");
   PetscCall(BoltROMCreate(r->comm, &r->rom));
   PetscCall(BoltROMSetFromOptions(r->rom));
   if (r->opt.rom) PetscCall(BoltROMCheckOptions(r->rom, r->contact));

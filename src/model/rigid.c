@@ -100,7 +100,7 @@ PetscErrorCode BoltRigidProject(BV R, Vec x)
 
 /* Inertia relief: f -= M R R' f, the load less what accelerates the structure as a rigid body,
    so that elastic forces alone balance the rest. */
-static PetscErrorCode RigidRelieve(BV R, Mat M, Vec f)
+PetscErrorCode BoltRigidRelieve(BV R, Mat M, Vec f)
 {
   PetscScalar c[6];
   Vec         w, Mw;
@@ -152,7 +152,7 @@ PetscErrorCode BoltStaticSolveFree(Mat K, Mat M, BV R, Vec f, Vec u, const char 
   PetscCall(VecDuplicate(f, &rhs));
   PetscCall(VecDuplicate(f, &un));
   PetscCall(VecCopy(f, fr));
-  PetscCall(RigidRelieve(R, M, fr));
+  PetscCall(BoltRigidRelieve(R, M, fr));
   PetscCall(VecZeroEntries(u));
   for (pass = 1; pass <= 20 && change > 1e-12 * norm; pass++) {
     PetscCall(MatMult(M, u, rhs));

@@ -85,6 +85,13 @@ PetscErrorCode BoltROMFingerprintScene(BoltAssembler *asmb, BoltContactSet *c, B
   PetscCall(BoltROMFingerprintInt(fp, "n_jim", nJIM));
   PetscCall(BoltROMFingerprintString(fp, "preload_group_lower", BoltLoadSetPreloadGroup(loads, 0)));
   PetscCall(BoltROMFingerprintString(fp, "preload_group_upper", BoltLoadSetPreloadGroup(loads, 1)));
+  if (BoltMeshIsFree(m)) PetscCall(BoltROMFingerprintInt(fp, "free_free", 1)); /* its basis holds the rigid motions; a held model's has none */
+  /* several bolts: each its own input, and the static shapes and the preloaded state depend on
+     their forces' ratios, which no one scale restores (one bolt's force only scales them) */
+  for (PetscInt b = 0; b < BoltLoadSetBoltCount(loads); b++) {
+    PetscCall(PetscSNPrintf(key, sizeof(key), "bolt_%s_force", BoltLoadSetBoltName(loads, b)));
+    PetscCall(BoltROMFingerprintReal(fp, key, BoltLoadSetBoltForce(loads, b)));
+  }
   for (PetscInt p = 0; p < BoltMeshPartCount(m); p++) {
     PetscReal E, nu, rho;
     PetscCall(BoltMeshPartMaterial(m, p, NULL, &E, &nu, &rho));

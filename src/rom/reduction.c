@@ -5,6 +5,22 @@
 #include "private/boltrom_krylov.h"
 #include "private/boltrom_interface.h"
 
+/* The preload's inputs: one column, or with several bolts (-preload_bolts) one per bolt, its 1 N
+   layer pattern: the bolts' forces are calibrated apart (by the FOM), so the basis must hold
+   each bolt's response, not one fixed mix of them. */
+static PetscInt BoltPreloadInputs(BoltLoadSet *loads)
+{
+  return PetscMax(1, BoltLoadSetBoltCount(loads));
+}
+
+static PetscErrorCode BoltInsertPreloadInputs(BV B, PetscInt col, BoltLoadSet *loads)
+{
+  PetscFunctionBeginUser;
+  if (!BoltLoadSetBoltCount(loads)) PetscCall(BVInsertVec(B, col, BoltLoadSetPreload(loads)));
+  for (PetscInt b = 0; b < BoltLoadSetBoltCount(loads); b++) PetscCall(BVInsertVec(B, col + b, BoltLoadSetBoltUnit(loads, b)));
+  PetscFunctionReturn(0);
+}
+
 /* Columns e_a - e_b for every matched node pair and direction, then the load and the preload. */
 static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, BV *B, PetscInt *ncols)
 {
@@ -12,7 +28,7 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
 
   PetscFunctionBeginUser;
   PetscCall(BoltNodePairs(c, NULL, &npairs, &pairs));
-  *ncols = 3 * npairs + 2;
+  *ncols = 3 * npairs + 1 + BoltPreloadInputs(loads);
   PetscCall(BVCreate(BoltMeshComm(BoltContactSetMesh(c)), B));
   PetscCall(BVSetSizesFromVec(*B, layout, *ncols));
   PetscCall(BVSetFromOptions(*B));
@@ -26,7 +42,7 @@ static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec
       col++;
     }
   PetscCall(BVInsertVec(*B, col++, BoltLoadSetLoadUnit(loads)));
-  PetscCall(BVInsertVec(*B, col++, BoltLoadSetPreload(loads)));
+  PetscCall(BoltInsertPreloadInputs(*B, col, loads));
   PetscCall(PetscFree(pairs));
   PetscFunctionReturn(0);
 }
@@ -191,6 +207,42 @@ static PetscErrorCode BoltSnapshotModes(BV V, PetscInt nsnap, Vec snap[], PetscI
   PetscFunctionReturn(0);
 }
 
+/* A free model's six rigid motions, appended to the basis: the Krylov vectors and the static
+   shapes (solved under inertia relief) are elastic, and an unbalanced load moves the whole
+   structure as a rigid body as well. */
+static PetscErrorCode ROMAppendRigid(BoltROM *rom, BV V)
+{
+  Vec r[6];
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < 6; k++) {
+    PetscCall(BVCreateVec(rom->rigid, &r[k]));
+    PetscCall(BVCopyVec(rom->rigid, k, r[k]));
+  }
+  PetscCall(BoltBasisAppend(V, "rigid-body modes", 6, r, 0, &rom->nRigid));
+  for (PetscInt k = 0; k < 6; k++) PetscCall(VecDestroy(&r[k]));
+  PetscFunctionReturn(0);
+}
+
+/* The rigid motions in the ROM's coordinates, V' R (exact: V spans them), for its static solves
+   (rom.c); once the basis is complete. */
+static PetscErrorCode ROMRigidCoordinates(BoltROM *rom, BV V)
+{
+  Vec r;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(rom->rigidr));
+  PetscCall(PetscMalloc1(6 * rom->n, &rom->rigidr));
+  PetscCall(BVCreateVec(rom->rigid, &r));
+  for (PetscInt k = 0; k < 6; k++) {
+    PetscCall(BVCopyVec(rom->rigid, k, r));
+    PetscCall(BVDotVec(V, r, &rom->rigidr[rom->n * k]));
+  }
+  PetscCall(VecDestroy(&r));
+  PetscCall(BVDestroy(&rom->rigid));
+  PetscFunctionReturn(0);
+}
+
 /* max |V'V - I| of the basis. */
 static PetscErrorCode ROMOrthogonality(BoltROM *rom, BV V)
 {
@@ -226,6 +278,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMatrices(asmb, &K, &M));
   /* built here: the snapshot modes, and the cone modes in the static solves, read this run's snapshots */
+  PetscCheck(!BoltLoadSetBoltCount(loads) || !rom->staticShapes || o->fomPreload, o->comm, PETSC_ERR_SUP, "The ROM of several bolts (-preload_bolts) starts from the FOM's calibrated bolts: add -fom true, or give a -rom_file built for these bolts");
   PetscCheck(o->nSnapshotModes == 0 || o->nFomSnapshots > 1, o->comm, PETSC_ERR_USER_INPUT, "-rom_snapshot_modes needs the FOM's snapshots of the same run: add -fom true -snapshot_every k");
   PetscCall(BoltAssemblerDamping(asmb, &C));
   rom->nCCM = o->nCCM;
@@ -236,13 +289,13 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     PetscCall(BoltInterfaceBuild(contact, M, C, K, kry->s0, o->nCCM, o->nJIM, kry->deflationTol, &ir));
     PetscCall(PetscLogEventEnd(BOLT_EVENT_INTERFACE_REDUCTION, 0, 0, 0, 0));
     PetscCall(BVCreate(o->comm, &B));
-    PetscCall(BVSetSizesFromVec(B, BoltLoadSetLoad(loads), ir->nIR + 2));
+    PetscCall(BVSetSizesFromVec(B, BoltLoadSetLoad(loads), ir->nIR + 1 + BoltPreloadInputs(loads)));
     PetscCall(BVSetFromOptions(B));
     PetscCall(BoltBVTolerateCancellation(B));
     PetscCall(BoltInterfaceInputs(ir, B, 0));
     PetscCall(BVInsertVec(B, ir->nIR, BoltLoadSetLoadUnit(loads)));
-    PetscCall(BVInsertVec(B, ir->nIR + 1, BoltLoadSetPreload(loads)));
-    rom->ninputs  = ir->nIR + 2;
+    PetscCall(BoltInsertPreloadInputs(B, ir->nIR + 1, loads));
+    rom->ninputs  = ir->nIR + 1 + BoltPreloadInputs(loads);
     kry->solve    = BoltInterfaceSolve;
     kry->solveCtx = ir;
     rom->nCCM     = ir->rankCCM;
@@ -262,6 +315,8 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   if (staticShapes) PetscCall(MatDestroy(&C));
   PetscCall(BoltMemoryRelease());
   PetscCall(BoltMemoryPrint(o->comm, "the Krylov basis"));
+  rom->nRigid = 0;
+  if (BoltMeshIsFree(BoltContactSetMesh(contact))) PetscCall(BoltAssemblerRigidModes(asmb, &rom->rigid)); /* the static solves' inertia relief (static_shapes.c) */
   if (staticShapes) {
     Vec     *extra;
     PetscInt added, nextra;
@@ -279,6 +334,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     }
     PetscCall(PetscLogEventEnd(BOLT_EVENT_BASIS, 0, 0, 0, 0));
   }
+  if (rom->rigid) PetscCall(ROMAppendRigid(rom, V));
   if (o->nSnapshotModes > 0) {
     Vec     *modes;
     PetscInt nmodes, added;
@@ -290,6 +346,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   }
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
+  if (rom->rigid) PetscCall(ROMRigidCoordinates(rom, V));
   rom->orthogonality = -1;
   if (o->checkOrthogonality) PetscCall(ROMOrthogonality(rom, V));
   PetscCall(PetscLogEventBegin(BOLT_EVENT_PROJECTION, 0, 0, 0, 0));

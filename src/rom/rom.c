@@ -9,7 +9,6 @@
    come from node-pair rows (normal ones on flat surfaces), and the forces, K_cr and the opening
    test's coefficients are kept with the state's version. */
 #include "private/rom.h"
-#include <petscblaslapack.h>
 
 static PetscErrorCode ROMProbe(BoltOperator *op, Vec q, PetscReal *value)
 {
@@ -149,6 +148,53 @@ static PetscErrorCode ROMOperatorDestroy(BoltOperator *op)
   PetscFunctionReturn(0);
 }
 
+/* A free model's ROM: K_r + K_cr is singular along its rigid motions, which its static solve (the
+   preload) would leave undetermined. With X = V' R, the rigid motions in its coordinates
+   (M_r-orthonormal: V spans them), P = k (M_r X)(M_r X)', k the free model's shift
+   (2 pi 10 Hz)^2, holds them in the static solves alone. A self-balanced right-hand side does
+   not move them (X' f = 0), so the solution is the one with X' M_r q = 0, as the FOM's preloaded
+   state is. (The lowest eigenvectors of (K_r, M_r) would not do: the joint's bolt, washers and
+   nut float freely without contact stiffness.) Every rank makes the same operations on the same
+   data: the same bits. */
+static PetscErrorCode ROMRigidStiffness(BoltROM *rom, Mat *P)
+{
+  const PetscInt     n = rom->n;
+  const PetscReal    k = BoltRigidShift();
+  const PetscScalar *mm, *x = rom->rigidr;
+  PetscScalar       *y, *p;
+  PetscReal          off = 0;
+
+  PetscFunctionBeginUser;
+  PetscCheck(x, rom->comm, PETSC_ERR_ARG_WRONGSTATE, "The ROM of a free model has no rigid motions: rebuild it (-rom_rebuild)");
+  PetscCall(PetscMalloc1(6 * n, &y));
+  PetscCall(MatDenseGetArrayRead(rom->Mr, &mm));
+  for (PetscInt c = 0; c < 6; c++) /* y = M_r x_c */
+    for (PetscInt i = 0; i < n; i++) {
+      PetscScalar sum = 0;
+      for (PetscInt j = 0; j < n; j++) sum += mm[i + n * j] * x[j + n * c];
+      y[i + n * c] = sum;
+    }
+  PetscCall(MatDenseRestoreArrayRead(rom->Mr, &mm));
+  for (PetscInt c = 0; c < 6; c++) /* X' M_r X = I: how well V holds R */
+    for (PetscInt d = 0; d < 6; d++) {
+      PetscScalar sum = 0;
+      for (PetscInt i = 0; i < n; i++) sum += x[i + n * c] * y[i + n * d];
+      off = PetscMax(off, PetscAbsScalar(sum - (c == d ? 1.0 : 0.0)));
+    }
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, P));
+  PetscCall(MatDenseGetArrayWrite(*P, &p));
+  for (PetscInt j = 0; j < n; j++)
+    for (PetscInt i = 0; i < n; i++) {
+      PetscScalar sum = 0;
+      for (PetscInt c = 0; c < 6; c++) sum += y[i + n * c] * y[j + n * c];
+      p[i + n * j] = k * sum;
+    }
+  PetscCall(MatDenseRestoreArrayWrite(*P, &p));
+  PetscCall(PetscPrintf(rom->comm, "ROM: free-free: its 6 rigid motions held in its static solves alone (max |X' M_r X - I| %.1e)\n", (double)off));
+  PetscCall(PetscFree(y));
+  PetscFunctionReturn(0);
+}
+
 /* The ROM's operator: its matrices, and its own contact state with the ROM's law, penalties and
    opening band. */
 PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
@@ -163,6 +209,12 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltContactStateSetAugment(BoltOperatorState(op), rom->augment)); /* -rom_contact_augment */
   PetscCall(BoltOperatorSetSystem(op, rom->Mr, NULL, rom->Kr, rom->loadr, rom->preloadr));
   PetscCall(BoltOperatorSetDamping(op, rom->Cr, rom->rayleigh[0], rom->rayleigh[1]));
+  if (BoltMeshIsFree(BoltContactSetMesh(rom->contact))) {
+    Mat P;
+    PetscCall(ROMRigidStiffness(rom, &P));
+    PetscCall(BoltOperatorSetRigidStiffness(op, P));
+    PetscCall(MatDestroy(&P));
+  }
   PetscCall(BoltOperatorSetContext(op, rom));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_DISPLACEMENTS, (void (*)(void))ROMContactDisplacements));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_FORCES, (void (*)(void))ROMContactForces));

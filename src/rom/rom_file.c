@@ -191,6 +191,7 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(BoltHDF5WriteValues(v, comm, "load_unit", n, 1, a, PETSC_TRUE));
   PetscCall(BoltHDF5WriteValues(v, comm, "preload_unit", n, 1, &a[n], PETSC_TRUE));
   PetscCall(PetscFree(a));
+  if (rom->rigidr) PetscCall(BoltHDF5WriteValues(v, comm, "rigid", 6 * n, n, rom->rigidr, PETSC_TRUE)); /* a free model's rigid motions, V' R */
   /* rows at the contact DOFs, each rank its owned ones, in global order */
   PetscCall(BoltOwnedContactDofs(rom->contact, BoltLoadSetLoad(loads), &ncd, &cd));
   {
@@ -444,6 +445,10 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
     PetscCall(PetscFree(Vpoints));
   }
   PetscCall(ROMLoadContactRows(rom, c, loads, v, file));
+  if (BoltMeshIsFree(BoltContactSetMesh(c))) { /* the fingerprint's mesh hash and clamp make it a free model's file */
+    PetscCall(PetscMalloc1(6 * n, &rom->rigidr));
+    PetscCall(BoltReadArray(v, "rigid", 6, n, rom->rigidr));
+  }
   if (rom->preloadState) PetscCall(BoltROMLoadPreloadState(rom, c, v, file));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscFree(groups));

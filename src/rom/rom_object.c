@@ -250,6 +250,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(VecDestroy(&rom->preloadr));
   PetscCall(PetscFree(rom->Vc));
   PetscCall(PetscFree(rom->Vprobe));
+  PetscCall(PetscFree(rom->rigidr));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(rom->marked));
   PetscCall(BoltKrylovDestroy(&rom->opt.krylov));

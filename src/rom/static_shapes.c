@@ -6,11 +6,41 @@
 #include "private/boltrom_krylov.h"
 #include "private/boltrom_interface.h"
 
+/* Every static solve of the offline phase goes through here: by the contact loop (dual), or with
+   ksp by its last factorisation alone. A free model (R, its rigid motions, mass-orthonormal) has
+   a singular operator: the right-hand side is balanced first under inertia relief, f - M R R' f
+   (a load, or the mass-proportional forcing of a Krylov vector, would otherwise have no static
+   solution), and the arbitrary rigid motion the solve leaves is taken out, R' M q = 0, as the
+   FOM's preload solve does. A held model (R NULL) solves as it is. */
+static PetscErrorCode ROMStaticSolve(BV R, BoltDual *dual, KSP ksp, Vec rhs, Vec q, PetscReal target, PetscInt *nout, PetscInt *nin)
+{
+  Vec      f = rhs;
+  PetscInt o = 0, i = 0;
+
+  PetscFunctionBeginUser;
+  if (R) {
+    Mat M;
+    PetscCall(BVGetMatrix(R, &M, NULL));
+    PetscCall(VecDuplicate(rhs, &f));
+    PetscCall(VecCopy(rhs, f));
+    PetscCall(BoltRigidRelieve(R, M, f));
+  }
+  if (ksp) PetscCall(KSPSolve(ksp, f, q));
+  else PetscCall(BoltDualSolveStatic(dual, f, q, target, &o, &i));
+  if (R) {
+    PetscCall(BoltRigidProject(R, q));
+    PetscCall(VecDestroy(&f));
+  }
+  if (nout) *nout = o;
+  if (nin) *nin = i;
+  PetscFunctionReturn(0);
+}
+
 /* Static Krylov vectors of the joint in its current contact state: out[k] = q(base + f_k) - qBase,
    with f_k = M out[k-1] (f_0 = M w0) scaled to the norm nforce, each solved by the dual loop from
    the state left by the one before (keepActiveSet, if set, holds the active set). work is
    overwritten. */
-static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBase, Vec w0, PetscReal nforce, PetscInt n, const char what[], Vec work, Vec rhs, Vec q, Vec out[])
+static PetscErrorCode BoltStaticKrylov(BV R, BoltDual *dual, Mat M, Vec base, Vec qBase, Vec w0, PetscReal nforce, PetscInt n, const char what[], Vec work, Vec rhs, Vec q, Vec out[])
 {
   BoltOperator *op;
   PetscInt      nout, nin;
@@ -25,7 +55,7 @@ static PetscErrorCode BoltStaticKrylov(BoltDual *dual, Mat M, Vec base, Vec qBas
     PetscCall(VecScale(work, (nforce > 0 ? nforce : 1.0) / nf));
     PetscCall(VecCopy(base, rhs));
     PetscCall(VecAXPY(rhs, 1.0, work));
-    PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+    PetscCall(ROMStaticSolve(R, dual, NULL, rhs, q, 0, &nout, &nin));
     PetscCall(VecDuplicate(q, &out[k]));
     PetscCall(VecWAXPY(out[k], -1.0, qBase, q));
     PetscCall(PetscPrintf(BoltOperatorComm(op), "ROM: %s Krylov vector %" PetscInt_FMT ": %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " points closed\n", what, k + 1, nout, nin, BoltContactStateActiveCount(BoltOperatorState(op))));
@@ -75,6 +105,7 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
     PetscCall(BoltPreloadStateApply(shared, op, q));
     PetscCall(BoltPreloadStateGetIterations(shared, &outer, &inner));
   } else {
+    PetscCheck(!BoltLoadSetBoltCount(loads), rom->comm, PETSC_ERR_SUP, "The ROM of several bolts (-preload_bolts) starts from the FOM's calibrated bolts: add -fom true, or give a -rom_file built for these bolts");
     /* as the FOM's time integrator would solve it (newmark.c): the same two scene options, on an
        operator of its own whose state is then handed over as the FOM's would be (a state that
        went through the solve keeps the friction's working data, and the shapes below then saw
@@ -92,7 +123,7 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
     PetscCall(BoltDualSetUp(fomDual));
     PetscCall(VecCopy(BoltOperatorPreloadVec(fom), rhs));
     if (withLoad) PetscCall(VecAXPY(rhs, 1.0, BoltOperatorLoadVec(op)));
-    PetscCall(BoltDualSolveStatic(fomDual, rhs, q, calibrate && !withLoad ? F : 0, &nout, &nin));
+    PetscCall(ROMStaticSolve(rom->rigid, fomDual, NULL, rhs, q, calibrate && !withLoad ? F : 0, &nout, &nin));
     outer = nout;
     inner = nin;
     PetscCall(BoltPreloadStateCreate(fom, q, outer, inner, &st));
@@ -149,13 +180,13 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
     for (PetscInt sign = -1; sign <= 1; sign += 2) {
       PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
       PetscCall(VecAXPY(rhs, sign * rom->slipScale / raise, BoltOperatorLoadVec(op)));
-      PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+      PetscCall(ROMStaticSolve(rom->rigid, dual, NULL, rhs, q, 0, &nout, &nin));
       BoltMarkBeyondCone(s, changed);
     }
   for (PetscInt sign = -1; sign <= 1; sign += 2) {
     PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
     PetscCall(VecAXPY(rhs, sign * openingScale / raise, BoltOperatorLoadVec(op)));
-    PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+    PetscCall(ROMStaticSolve(rom->rigid, dual, NULL, rhs, q, 0, &nout, &nin));
     for (PetscInt k = 0; k < 4 * BoltContactSetElementCount(c); k++) changed[k] = (PetscBool)(changed[k] || BoltContactStateActive(s)[k] != rom->active0[k]);
     if (BoltContactStateHasFriction(s)) BoltMarkBeyondCone(s, changed);
   }
@@ -174,7 +205,7 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
     PetscCall(VecCopy(q, q2));
     PetscCall(PetscMalloc1(nOpenKrylov, &openK));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
-    PetscCall(BoltStaticKrylov(dual, BoltOperatorMass(op), base, q2, response, 1e-3 * npre, nOpenKrylov, "opened-joint", work, rhs, q, openK));
+    PetscCall(BoltStaticKrylov(rom->rigid, dual, BoltOperatorMass(op), base, q2, response, 1e-3 * npre, nOpenKrylov, "opened-joint", work, rhs, q, openK));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_FALSE));
     PetscCall(VecDestroy(&base));
     PetscCall(VecDestroy(&q2));
@@ -240,14 +271,14 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
   if (!(keepActive && nClosed > 0)) { /* else the closed-contact vectors' last solve factored K + K_c of the preloaded set */
     PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
-    PetscCall(BoltDualSolveStatic(dual, BoltOperatorPreloadVec(op), q, 0, &nout, &nin));
+    PetscCall(ROMStaticSolve(rom->rigid, dual, NULL, BoltOperatorPreloadVec(op), q, 0, &nout, &nin));
   }
   PetscCall(BoltDualGetSolver(dual, NULL, &ksp)); /* factored by the last solve */
   for (PetscInt i = 0; i < npairs; i++)
     for (PetscInt d = 0; d < 3; d++) {
       PetscCall(BoltNodePairVector(pairs[2 * i], pairs[2 * i + 1], d, rhs));
       PetscCall(VecDuplicate(q, &extra[*nextra]));
-      PetscCall(KSPSolve(ksp, rhs, extra[*nextra]));
+      PetscCall(ROMStaticSolve(rom->rigid, dual, ksp, rhs, extra[*nextra], 0, NULL, NULL));
       (*nextra)++;
     }
   if (rom->coneModes > 0) /* compressed: the responses to the training run's patterns at the cone pairs, per direction */
@@ -258,7 +289,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
       for (PetscInt l = 0; l < k; l++) {
         PetscCall(BoltNodePairsCombination(nConePairs, conePairs, coneDirs + 3 * j, 6, &patterns[nConePairs * l], rhs));
         PetscCall(VecDuplicate(q, &extra[*nextra]));
-        PetscCall(KSPSolve(ksp, rhs, extra[*nextra]));
+        PetscCall(ROMStaticSolve(rom->rigid, dual, ksp, rhs, extra[*nextra], 0, NULL, NULL));
         (*nextra)++;
         ncone++;
       }
@@ -269,7 +300,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
       for (PetscInt j = rom->coneTraction ? 0 : 1; j < 2; j++) {
         PetscCall(BoltNodePairVectorAlong(conePairs[2 * i], conePairs[2 * i + 1], &coneDirs[6 * i + 3 * j], rhs));
         PetscCall(VecDuplicate(q, &extra[*nextra]));
-        PetscCall(KSPSolve(ksp, rhs, extra[*nextra]));
+        PetscCall(ROMStaticSolve(rom->rigid, dual, ksp, rhs, extra[*nextra], 0, NULL, NULL));
         (*nextra)++;
         ncone++;
       }
@@ -323,7 +354,7 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
   PetscCall(VecScale(BoltOperatorLoadVec(op), raise));
   PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
   PetscCall(VecAXPY(rhs, 1.0, BoltOperatorLoadVec(op)));
-  PetscCall(BoltDualSolveStatic(dual, rhs, q, 0, &nout, &nin));
+  PetscCall(ROMStaticSolve(rom->rigid, dual, NULL, rhs, q, 0, &nout, &nin));
   PetscCall(VecDuplicate(q, &extra[1]));
   PetscCall(VecWAXPY(extra[1], -1.0, extra[0], q));
   PetscCall(VecScale(extra[1], 1.0 / raise));
@@ -356,7 +387,7 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
       PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     }
     /* BoltOperatorLoadVec(op), this solve's own copy, is the forcing of each vector in turn */
-    PetscCall(BoltStaticKrylov(dual, BoltOperatorMass(op), BoltOperatorPreloadVec(op), extra[0], extra[1], nforce, nClosed, "closed-contact", BoltOperatorLoadVec(op), rhs, q, &extra[2]));
+    PetscCall(BoltStaticKrylov(rom->rigid, dual, BoltOperatorMass(op), BoltOperatorPreloadVec(op), extra[0], extra[1], nforce, nClosed, "closed-contact", BoltOperatorLoadVec(op), rhs, q, &extra[2]));
   }
   *nextra = 2 + nClosed;
   /* Each opening shape is the preloaded joint's static response to a unit force pair on one of

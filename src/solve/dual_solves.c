@@ -20,6 +20,7 @@ static PetscErrorCode BoltDualSumStructural(BoltDual *d, Mat S)
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(S));
   PetscCall(MatAXPY(S, 1.0, op->K, SUBSET_NONZERO_PATTERN));
+  if (!d->dynamic && op->Krigid) PetscCall(MatAXPY(S, 1.0, op->Krigid, SUBSET_NONZERO_PATTERN));
   if (d->dynamic) {
     PetscCall(MatAXPY(S, d->massCoef, op->M, SUBSET_NONZERO_PATTERN));
     PetscCall(MatAXPY(S, d->dampingCoef, op->C, SUBSET_NONZERO_PATTERN));

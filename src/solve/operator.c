@@ -48,6 +48,18 @@ PetscErrorCode BoltOperatorSetDamping(BoltOperator *op, Mat C, PetscReal alpha, 
   PetscFunctionReturn(0);
 }
 
+/* A stiffness added to K in the static solves only (referenced): a free ROM's rigid motions
+   would leave K + K_c singular there, and a preload or contact force, self-balanced, does not
+   move them, so the solution is the same (docs/reduction.md, "Free-free models"). */
+PetscErrorCode BoltOperatorSetRigidStiffness(BoltOperator *op, Mat Krigid)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectReference((PetscObject)Krigid));
+  PetscCall(MatDestroy(&op->Krigid));
+  op->Krigid = Krigid;
+  PetscFunctionReturn(0);
+}
+
 /* The model's solver: its options prefix, its direct solver, whether every contact gap can be
    closed, whether the loop keeps K + a1 M + a4 C summed (small dense matrices). */
 PetscErrorCode BoltOperatorSetSolver(BoltOperator *op, const char prefix[], MatSolverType type, PetscBool exactConstraints, PetscBool keepStructural)
@@ -203,6 +215,7 @@ PetscErrorCode BoltOperatorDestroy(BoltOperator **opp)
   PetscCall(MatDestroy(&op->M));
   PetscCall(MatDestroy(&op->C));
   PetscCall(MatDestroy(&op->K));
+  PetscCall(MatDestroy(&op->Krigid));
   PetscCall(VecDestroy(&op->load));
   PetscCall(VecDestroy(&op->preload));
   PetscCall(BoltContactStateDestroy(&op->state));
