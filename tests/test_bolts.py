@@ -77,7 +77,8 @@ def test_restart_keeps_each_bolts_layer_force(joint2, tmp_path):
 
 def test_rom_of_two_bolts_follows_the_fom(joint2, tmp_path):
     """The ROM of the two-bolt joint (one preload input per bolt, the FOM's calibrated layer forces)
-    against the FOM on a 10 N step; its file, built for bolt 2 at 15 kN, is rebuilt for 10 kN, and
+    against the FOM on a 10 N step, each bolt's clamp force read from its stud in the ROM's
+    preloaded state; its file, built for bolt 2 at 15 kN, is rebuilt for 10 kN, and
     the rebuilt ROM's preload differs: the bolts' forces are in the fingerprint."""
     mesh, _ = joint2
     rom = tmp_path / "two.rom.h5"
@@ -94,6 +95,9 @@ def test_rom_of_two_bolts_follows_the_fom(joint2, tmp_path):
     print("two bolts: e_L2", e, "dim", a["rom"]["dim"], "speedup", a["speedup"])
     assert a["rom"]["source"] == "built" and fa == 15000
     assert e < 5e-3  # measured 2.0e-3: a margin of 2.5
+    # the ROM's preloaded state clamps as the FOM's: each stud read in V q (measured within 1e-10)
+    for bolt, target in (("1", 20000.0), ("2", 15000.0)):
+        assert abs(a["rom"]["bolt_stud_tension"][bolt] - target) <= 1e-6 * target, a["rom"]["bolt_stud_tension"]
     b, fb, pb = run(10000, "b")
     assert b["rom"]["source"] == "built" and fb == 10000  # not the 15 kN file
     # another ROM: its opening shapes and preload differ (measured: dimension 174 against 168)

@@ -64,6 +64,8 @@ struct _n_BoltSummary {
   BoltNewmark    *romRun;
   PetscBool       romCheckS0;
   PetscReal       romCheckError;
+  PetscInt        romBolts;                      /* "rom.bolt_stud_tension": several bolts, read in the ROM's preloaded state */
+  PetscReal       romStudTension[BOLTROM_MAX_BOLTS];
   PetscReal       errL2, errMean;                /* "speedup" and "errors": with both runs */
 };
 

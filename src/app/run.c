@@ -225,6 +225,35 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscFunctionReturn(0);
 }
 
+/* Several bolts: each bolt's clamp force read from its stud in the ROM's preloaded state, V q
+   with the FOM's calibrated layer forces, against the FOM's: the ROM's preload is driven by
+   those forces and must clamp as the FOM's does. Needs the FOM's run and the whole basis. */
+static PetscErrorCode BoltRunROMStudTensions(BoltRun *r)
+{
+  BoltSummary *s = &r->sum;
+  PetscBool    whole = PETSC_FALSE, stud;
+  Vec          q, u;
+  Mat          K;
+
+  PetscFunctionBeginUser;
+  if (!BoltLoadSetBoltCount(r->loads) || !r->fomOp) PetscFunctionReturn(0);
+  PetscCall(BoltROMBasisEnsure(r->rom, r->mesh, BoltLoadSetLoad(r->loads), &whole));
+  if (!whole) PetscFunctionReturn(0);
+  PetscCall(BoltNewmarkGetModel(r->romNm, NULL, NULL, &q));
+  PetscCall(BoltAssemblerGetMatrices(r->asmb, &K, NULL));
+  PetscCall(VecDuplicate(BoltLoadSetLoad(r->loads), &u));
+  PetscCall(BoltROMExpand(r->rom, q, u));
+  PetscCall(PetscPrintf(r->comm, "ROM: clamp force read from each stud in its preloaded state [N]:"));
+  for (PetscInt b = 0; b < BoltLoadSetBoltCount(r->loads); b++) {
+    PetscCall(BoltLoadSetStudTension(r->loads, b, K, u, BoltOperatorPreloadVec(r->fomOp), &s->romStudTension[b], &stud));
+    PetscCall(PetscPrintf(r->comm, " %s %.1f", BoltLoadSetBoltName(r->loads, b), (double)s->romStudTension[b]));
+  }
+  PetscCall(PetscPrintf(r->comm, "\n"));
+  s->romBolts = BoltLoadSetBoltCount(r->loads);
+  PetscCall(VecDestroy(&u));
+  PetscFunctionReturn(0);
+}
+
 /* The reduced-order model: offline reduction (or a matching ROM file), static preload, transient,
    and its errors against the FOM's run if there is one. */
 PetscErrorCode BoltRunROM(BoltRun *r)
@@ -242,7 +271,7 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   PetscCall(BoltROMSetUp(r->rom, r->asmb, r->contact, r->loads));
   PetscCall(BoltPreloadStateDestroy(&r->fomPreload));
   PetscCall(BoltROMOperatorCreate(r->rom, &r->romOp));
-  if (!r->opt.writeOutput) PetscCall(BoltROMReleaseBasis(r->rom)); /* kept only for the output's V q */
+  if (!r->opt.writeOutput && !BoltLoadSetBoltCount(r->loads)) PetscCall(BoltROMReleaseBasis(r->rom)); /* kept only for the output's V q (and the bolts' stud tensions) */
   if (r->opt.romCheckS0) PetscCall(BoltROMCheckAtS0(r->rom, r->romOp, r->asmb, r->contact, r->loads, &s->romCheckError));
   if (r->opt.exportDir[0]) PetscCall(BoltExportReduced(r->opt.exportDir, r->rom, r->romOp));
   PetscCall(BoltRunNewmarkCreate(r, r->romOp, &r->romNm));
@@ -250,6 +279,7 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   PetscCall(PetscLogStagePush(BOLT_STAGE_PRELOAD));
   PetscCall(BoltNewmarkPreload(r->romNm));
   PetscCall(PetscLogStagePop());
+  PetscCall(BoltRunROMStudTensions(r));
   PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));
   PetscCall(BoltNewmarkRun(r->romNm));
   PetscCall(PetscLogStagePop());

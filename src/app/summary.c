@@ -106,6 +106,11 @@ static PetscErrorCode SummaryROM(BoltJSON *j, const BoltSummary *s)
   }
   PetscCall(BoltNewmarkSummaryWrite(s->romRun, j, PETSC_FALSE));
   if (s->romCheckS0) PetscCall(BoltJSONReal(j, "check_s0_error", s->romCheckError));
+  if (s->romBolts) {
+    PetscCall(BoltJSONBeginObject(j, "bolt_stud_tension"));
+    for (PetscInt b = 0; b < s->romBolts; b++) PetscCall(BoltJSONReal(j, BoltLoadSetBoltName(s->loads, b), s->romStudTension[b]));
+    PetscCall(BoltJSONEndObject(j));
+  }
   PetscCall(BoltJSONEndObject(j));
   if (s->fomRun) {
     PetscReal tf, tr;
