@@ -37,6 +37,19 @@ def run_summary(args, tmp, ranks=1, name="summary"):
     return json.loads(path.read_text())
 
 
+def load_petsc_matrix(path):
+    """A matrix boltrom wrote with -export_matrices (PETSc binary), as a scipy CSR matrix."""
+    import petsc4py
+    petsc4py.init([])
+    from petsc4py import PETSc
+    import scipy.sparse as sp
+    viewer = PETSc.Viewer().createBinary(str(path), "r", comm=PETSc.COMM_SELF)
+    A = PETSc.Mat().create(PETSc.COMM_SELF)
+    A.load(viewer)
+    ai, aj, av = A.getValuesCSR()
+    return sp.csr_matrix((av, aj, ai), shape=A.getSize())
+
+
 def make_mesh(kind, path, level=1.0, extra=()):
     json_path = Path(str(path) + ".json")
     subprocess.run([PYTHON, str(ROOT / "scripts" / "mesh-joint"), "--kind", kind, "--level", str(level),

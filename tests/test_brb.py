@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import make_mesh, run_summary
+from conftest import load_petsc_matrix, make_mesh, run_summary
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
@@ -82,10 +82,6 @@ def test_free_brb_tied_modes_against_an_independent_eigensolver(brb, tmp_path):
     scipy's ARPACK on the exported matrices (rigid modes left in), to 1e-6; the six rigid
     frequencies under K below 1e-3 of the first elastic one; the first two modes are the two
     bending planes (z lower: the lap's steps weaken it, y nearly a whole beam)."""
-    import petsc4py
-    petsc4py.init([])
-    from petsc4py import PETSc
-    import scipy.sparse as sp
     import scipy.sparse.linalg as sla
 
     mesh, _ = brb
@@ -93,14 +89,7 @@ def test_free_brb_tied_modes_against_an_independent_eigensolver(brb, tmp_path):
     s = run_summary(["-mesh", mesh, "-static", "false", "-modal_nev", "4", "-contact_law", "stick",
                      "-contact_penalty_factor", "200", "-export_matrices", exp] + FREE, tmp_path)
 
-    def load(path):
-        viewer = PETSc.Viewer().createBinary(str(path), "r", comm=PETSc.COMM_SELF)
-        A = PETSc.Mat().create(PETSc.COMM_SELF)
-        A.load(viewer)
-        ai, aj, av = A.getValuesCSR()
-        return sp.csr_matrix((av, aj, ai), shape=A.getSize())
-
-    K, M = load(exp / "K_tied.petsc"), load(exp / "M.petsc")
+    K, M = load_petsc_matrix(exp / "K_tied.petsc"), load_petsc_matrix(exp / "M.petsc")
     w, V = sla.eigsh(K, k=10, M=M, sigma=-(2 * np.pi * 100) ** 2, which="LM")
     order = np.argsort(w)
     w, V = w[order], V[:, order]

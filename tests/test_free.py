@@ -9,7 +9,7 @@ import sys
 import h5py
 import numpy as np
 
-from conftest import ROOT, make_mesh, run_boltrom, run_summary
+from conftest import ROOT, load_petsc_matrix, make_mesh, run_summary
 
 sys.path.insert(0, str(ROOT / "python"))
 import beam_theory  # noqa: E402
@@ -123,10 +123,6 @@ def test_free_joint_modes_against_an_independent_eigensolver(joint_small, tmp_pa
     against scipy's ARPACK with SuperLU on the exported matrices, shift-inverted about
     -(2 pi 100 Hz)^2 with the rigid modes left in; and the rigid motions' own frequencies under K
     far below the first elastic one."""
-    import petsc4py
-    petsc4py.init([])
-    from petsc4py import PETSc
-    import scipy.sparse as sp
     import scipy.sparse.linalg as sla
 
     mesh, _ = joint_small
@@ -134,14 +130,7 @@ def test_free_joint_modes_against_an_independent_eigensolver(joint_small, tmp_pa
     s = run_summary(["-mesh", mesh, "-clamp", "false", "-static", "false", "-modal_nev", "4",
                      "-export_matrices", exp, "-output", "false"], tmp_path)
 
-    def load(path):
-        viewer = PETSc.Viewer().createBinary(str(path), "r", comm=PETSc.COMM_SELF)
-        A = PETSc.Mat().create(PETSc.COMM_SELF)
-        A.load(viewer)
-        ai, aj, av = A.getValuesCSR()
-        return sp.csr_matrix((av, aj, ai), shape=A.getSize())
-
-    K, M = load(exp / "K_tied.petsc"), load(exp / "M.petsc")
+    K, M = load_petsc_matrix(exp / "K_tied.petsc"), load_petsc_matrix(exp / "M.petsc")
     w = np.sort(sla.eigsh(K, k=10, M=M, sigma=-(2 * np.pi * 100) ** 2, which="LM", return_eigenvectors=False))
     ref = np.sqrt(w[6:]) / (2 * np.pi)
     f = np.array(s["modal"]["frequencies_hz"])
