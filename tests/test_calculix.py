@@ -64,6 +64,19 @@ def ccx_or_skip():
         pytest.skip(msg)
 
 
+def run_crosscheck(mesh, work, out, args, tol, timeout):
+    """scripts/ccx-crosscheck at level 0.5 on mesh with the comparison's own args and tolerances
+    ({"--tol-...": value}), writing its JSON to out: the process and the JSON (which must exist,
+    whatever the exit code: the tests assert on its numbers)."""
+    cmd = [PYTHON, str(ROOT / "scripts" / "ccx-crosscheck"), "--level", "0.5", "--mesh", str(mesh)] + list(args)
+    cmd += ["--workdir", str(work), "--json", str(out)]
+    for k, v in tol.items():
+        cmd += [k, str(v)]
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT, timeout=timeout)
+    assert out.exists(), f"ccx-crosscheck wrote no JSON ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}"
+    return proc, json.loads(out.read_text())
+
+
 @pytest.mark.parametrize("ci,outcome", [("true", "failed"), ("", "skipped")])
 def test_missing_ccx_fails_under_ci(monkeypatch, ci, outcome):
     monkeypatch.setattr(shutil, "which", lambda *a, **k: None)

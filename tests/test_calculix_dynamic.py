@@ -6,13 +6,10 @@ and two pressed blocks under a step that keeps every pair closed, where the two 
 same discrete problem up to ccx's gap penalty. docs/verification.md section 10 has the figures
 and the reasons for the bounds.
 """
-import json
-import subprocess
 
 import pytest
 
-from conftest import ENV, PYTHON, ROOT
-from test_calculix import ccx_or_skip
+from test_calculix import ccx_or_skip, run_crosscheck
 
 STEPS = 40
 BLOCK_STEPS = 300
@@ -21,14 +18,8 @@ TOL = {"--tol-dynamic": 4e-2, "--tol-dynamic-stick": 5e-3, "--tol-dynamic-blocks
 
 
 def crosscheck(mesh, work, case):
-    out = work / f"dynamic-{case}.json"
-    cmd = [PYTHON, str(ROOT / "scripts" / "ccx-crosscheck"), "--level", "0.5", "--mesh", str(mesh), "--only", "dynamic",
-           "--dynamic-case", case, "--dynamic-steps", str(STEPS), "--workdir", str(work), "--json", str(out)]
-    for k, v in TOL.items():
-        cmd += [k, str(v)]
-    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT, timeout=600)
-    assert out.exists(), f"ccx-crosscheck wrote no JSON ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}"
-    return proc, json.loads(out.read_text())
+    return run_crosscheck(mesh, work, work / f"dynamic-{case}.json",
+                          ["--only", "dynamic", "--dynamic-case", case, "--dynamic-steps", str(STEPS)], TOL, 600)
 
 
 @pytest.fixture(scope="module")

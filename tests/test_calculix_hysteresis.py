@@ -12,14 +12,11 @@ bound of its own, the measured value in the comment beside it; docs/verification
 has the figures and the reasons for the bounds. Without ccx the tests skip, except under CI
 (CI=true), where a missing ccx is a failure.
 """
-import json
-import subprocess
 
 import numpy as np
 import pytest
 
-from conftest import ENV, PYTHON, ROOT
-from test_calculix import ccx_or_skip
+from test_calculix import ccx_or_skip, run_crosscheck
 
 LEVEL, QUARTER = 1, 4
 LOAD, PRESS, MU = 200.0, 1000.0, 0.1
@@ -35,15 +32,9 @@ CHECKS = sorted(["cycle blocks u_x history", "cycle blocks loop area", "cycle bl
 
 
 def crosscheck(mesh, work, tol):
-    out = work / "hysteresis.json"
-    cmd = [PYTHON, str(ROOT / "scripts" / "ccx-crosscheck"), "--level", "0.5", "--mesh", str(mesh), "--only",
-           "hysteresis", "--cycle-case", "blocks", "--cycle-blocks-level", str(LEVEL), "--cycle-blocks-quarter", str(QUARTER), "--workdir", str(work),
-           "--json", str(out)]
-    for k, v in tol.items():
-        cmd += [k, str(v)]
-    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT, timeout=300)
-    assert out.exists(), f"ccx-crosscheck wrote no JSON ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}"
-    return proc, json.loads(out.read_text())
+    return run_crosscheck(mesh, work, work / "hysteresis.json",
+                          ["--only", "hysteresis", "--cycle-case", "blocks", "--cycle-blocks-level", str(LEVEL),
+                           "--cycle-blocks-quarter", str(QUARTER)], tol, 300)
 
 
 @pytest.fixture(scope="module")

@@ -47,6 +47,20 @@ def rigid_part(x, u):
     return (A @ coef).reshape(u.shape), (u.ravel() - A @ coef).reshape(u.shape)
 
 
+def rom_against_fom(s, h5, name):
+    """A run's ROM error at the probe, and both models' final displacements split into their
+    rigid and elastic parts: e_L2, the FOM's drift and elastic size, then rf, ef, rr, er."""
+    e = s["errors"]["load_point"]["e_L2"]
+    with h5py.File(h5, "r") as f:
+        x = f["/geometry/vertices"][...]
+        uf, ur = f["/vertex_fields/fom_final_displacement"][...], f["/vertex_fields/rom_final_displacement"][...]
+    (rf, ef), (rr, er) = rigid_part(x, uf), rigid_part(x, ur)
+    drift, elastic = np.abs(rf).max(), np.abs(ef).max()
+    print(f"{name} ROM: e_L2 {e:.3e}, dim {s['rom']['dim']}, speedup {s['speedup']:.1f}; drift {drift:.3e} m, "
+          f"ROM's off by {np.abs(rr - rf).max() / drift:.2e}; elastic {elastic:.3e} m, off by {np.abs(er - ef).max() / elastic:.2e}")
+    return e, drift, elastic, rf, ef, rr, er
+
+
 def test_free_joint_preload_has_no_rigid_drift(joint_small, tmp_path):
     """The free joint's preload (self-balanced, no load): every pair carries the preload, and the
     preloaded state is the same on 1 and 2 ranks. Its operator is singular, so a solve leaves an
@@ -83,14 +97,7 @@ def test_free_rom_follows_the_fom_and_its_rigid_drift(joint_small, tmp_path):
     d = tmp_path / "out"
     s = run_summary(["-mesh", mesh, "-clamp", "false", "-fom", "true", "-rom", "true", "-load_force", "10",
                      "-ts_end", "0.01", "-static", "false", "-modal_nev", "0", "-output_dir", d], d)
-    e = s["errors"]["load_point"]["e_L2"]
-    with h5py.File(d / "joint.h5", "r") as f:
-        x = f["/geometry/vertices"][...]
-        uf, ur = f["/vertex_fields/fom_final_displacement"][...], f["/vertex_fields/rom_final_displacement"][...]
-    (rf, ef), (rr, er) = rigid_part(x, uf), rigid_part(x, ur)
-    drift, elastic = np.abs(rf).max(), np.abs(ef).max()
-    print(f"free joint ROM: e_L2 {e:.3e}, dim {s['rom']['dim']}, speedup {s['speedup']}; drift {drift:.3e} m, "
-          f"ROM's off by {np.abs(rr - rf).max() / drift:.2e}; elastic {elastic:.3e} m, off by {np.abs(er - ef).max() / elastic:.2e}")
+    e, drift, elastic, rf, ef, rr, er = rom_against_fom(s, d / "joint.h5", "free joint")
     assert drift > 100 * elastic  # the load is unbalanced: it moves the joint as a whole
     assert np.abs(rr - rf).max() <= 1e-4 * drift  # measured 1.6e-6
     assert np.abs(er - ef).max() <= 5e-3 * elastic  # measured 1.6e-3
@@ -105,14 +112,7 @@ def test_brb_rom_follows_the_fom(meshdir, tmp_path):
     d = tmp_path / "out"
     s = run_summary(["-options_file", ROOT / "inputs" / "brb-ringdown.yaml", "-mesh", mesh, "-ts_end", "0.03",
                      "-load_force", "100", "-rom", "true", "-output_dir", d], d)
-    e = s["errors"]["load_point"]["e_L2"]
-    with h5py.File(d / "brb.h5", "r") as f:
-        x = f["/geometry/vertices"][...]
-        uf, ur = f["/vertex_fields/fom_final_displacement"][...], f["/vertex_fields/rom_final_displacement"][...]
-    (rf, ef), (rr, er) = rigid_part(x, uf), rigid_part(x, ur)
-    drift, elastic = np.abs(rf).max(), np.abs(ef).max()
-    print(f"BRB ROM: e_L2 {e:.3e}, dim {s['rom']['dim']}, speedup {s['speedup']:.1f}; drift {drift:.3e} m, "
-          f"ROM's off by {np.abs(rr - rf).max() / drift:.2e}; elastic {elastic:.3e} m, off by {np.abs(er - ef).max() / elastic:.2e}")
+    e, drift, elastic, rf, ef, rr, er = rom_against_fom(s, d / "brb.h5", "BRB")
     assert e < 5e-4  # measured 1.44e-4: a margin of 3.5
     assert np.abs(rr - rf).max() <= 5e-4 * drift  # measured 5.7e-5
     assert np.abs(er - ef).max() <= 3e-2 * elastic  # measured 7.8e-3
