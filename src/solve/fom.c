@@ -112,6 +112,10 @@ PetscErrorCode BoltFOMCreate(BoltAssembler *asmb, BoltContactSet *contact, BoltL
   ctx->loads           = loads;
   op->solverType       = MATSOLVERMUMPS;
   op->exactConstraints = PETSC_TRUE;
+  /* the frictional law factorises about twice a step as pairs stick and slip: K + a1 M + a4 C is
+     then summed once per set of Newmark coefficients and copied, not summed from K, M and C before
+     every factorisation (the same bits; one more matrix of K's pattern in memory) */
+  op->keepStructural = BoltContactSetHasFriction(contact);
   PetscCall(PetscStrncpy(op->prefix, "fom_", sizeof(op->prefix)));
   PetscCall(BoltOperatorSetSystem(op, M, NULL, K, BoltLoadSetLoad(loads), BoltLoadSetPreload(loads)));
   if (transient) {
