@@ -140,20 +140,23 @@ def damage(src, dst, how, dataset):
 
 @pytest.mark.parametrize("how", ["truncated", "flipped"])
 def test_damaged_rom_file(files, tmp_path, how):
-    """Refused before the FOM runs, unless -rom_rebuild is given: then it is rebuilt (and the
-    rebuilt file reads)."""
+    """Refused before the FOM runs, unless -rom_rebuild names a file: then the ROM is built into it
+    (the damaged file left as it is, the new one read by the next run)."""
     mesh, d = files
     bad = tmp_path / "rom.h5"
     data = damage(d / "rom.h5", bad, how, "rom/Kr")
     args = SCENE + ["-mesh", mesh, "-ts_end", "2e-4", "-rom_file", bad]
     line, out = one_line_error(args, tmp_path)
     assert line == (f"boltrom: error: ROM file {bad} is damaged or cut short (it cannot be read through, or its data "
-                    "do not match the checksum written with it): rebuild it with -rom_rebuild true, or remove it")
+                    "do not match the checksum written with it): build a new one with -rom_rebuild FILE (the same name "
+                    "overwrites it), or remove it")
     assert "FOM" not in out and bad.read_bytes() == data
-    p = run_boltrom(args + ["-fom", "false", "-rom_rebuild", "true", "-output", "false"])
-    assert f"ROM file {bad} is damaged or cut short: rebuilding it, as asked" in p.stdout
-    p = run_boltrom(args + ["-fom", "false", "-rom_rebuild", "false", "-output", "false"])
-    assert f"ROM: reusing {bad}" in p.stdout
+    new = tmp_path / "new.rom.h5"
+    p = run_boltrom(args + ["-fom", "false", "-rom_rebuild", new, "-output", "false"])
+    assert f"ROM file {bad} is damaged or cut short: building the ROM into {new}, as asked (-rom_rebuild)" in p.stdout
+    assert bad.read_bytes() == data and new.exists()
+    p = run_boltrom(SCENE + ["-mesh", mesh, "-ts_end", "2e-4", "-rom_file", new, "-fom", "false", "-output", "false"])
+    assert f"ROM: reusing {new}" in p.stdout
 
 
 @pytest.mark.parametrize("how", ["truncated", "flipped"])
@@ -171,3 +174,31 @@ def test_damaged_checkpoint(files, tmp_path, how):
     p = run_boltrom(SCENE + ["-mesh", mesh, "-rom", "false", "-ts_end", "6e-4", "-restart", "-checkpoint_file",
                              tmp_path / "ok", "-output", "false"])
     assert f"restarted from {tmp_path / 'ok-fom.ckpt.h5'} at step 5" in p.stdout
+
+
+# ------------------------------------------------------------- a ROM file built for another scene
+def test_rom_file_of_another_friction_is_kept_and_refused(joint_small, tmp_path):
+    """A ROM file built at mu 0.1: a run at mu 0.2 or with another stick stiffness is refused
+    before any model runs, naming the first difference, and the file stays byte for byte (a
+    trained ROM was once replaced that way by one built without its training); -rom_rebuild FILE
+    builds the ROM for the new scene into FILE, which the next run reuses."""
+    rom = tmp_path / "mu0.1.rom.h5"
+    args = SCENE + ["-mesh", joint_small[0], "-fom", "false", "-ts_end", "2e-4", "-contact_law", "coulomb",
+                    "-preload_force", "5000", "-rom_file", rom]
+    run_boltrom(args + ["-contact_friction", "0.1", "-output", "false"])
+    kept = rom.read_bytes()
+    for change, first in ((["-contact_friction", "0.2"], "pair_head_washer_friction: the file has 0.1, the scene 0.2"),
+                          (["-contact_friction", "0.1", "-contact_stick_stiffness_factor", "400"],
+                           "pair_head_washer_stick_stiffness: the file has 4.2e+13, the scene 8.4e+13")):
+        line, out = one_line_error(args + change, tmp_path)
+        assert line == (f"boltrom: error: ROM file {rom} was built for another scene ({first}) and is kept as it is: "
+                        "point -rom_file at a new file, or build one for this scene with -rom_rebuild FILE (the same "
+                        "name overwrites it)"), line
+        assert "ROM:" not in out and rom.read_bytes() == kept
+    line, _ = one_line_error(args + ["-contact_friction", "0.2", "-rom_rebuild", "true"], tmp_path)
+    assert "-rom_rebuild takes the file to build the ROM into (got 'true')" in line
+    new = tmp_path / "mu0.2.rom.h5"
+    p = run_boltrom(args + ["-contact_friction", "0.2", "-rom_rebuild", new, "-output", "false"])
+    assert f"building the ROM into {new}, as asked (-rom_rebuild)" in p.stdout and rom.read_bytes() == kept
+    p = run_boltrom([a if a != rom else new for a in args] + ["-contact_friction", "0.2", "-output", "false"])
+    assert f"ROM: reusing {new}" in p.stdout

@@ -78,15 +78,16 @@ def test_restart_keeps_each_bolts_layer_force(joint2, tmp_path):
 def test_rom_of_two_bolts_follows_the_fom(joint2, tmp_path):
     """The ROM of the two-bolt joint (one preload input per bolt, the FOM's calibrated layer forces)
     against the FOM on a 10 N step, each bolt's clamp force read from its stud in the ROM's
-    preloaded state; its file, built for bolt 2 at 15 kN, is rebuilt for 10 kN, and
-    the rebuilt ROM's preload differs: the bolts' forces are in the fingerprint."""
+    preloaded state; its file, built for bolt 2 at 15 kN, is refused at 10 kN and rebuilt into the
+    same name when asked, and the rebuilt ROM's preload differs: the bolts' forces are in the
+    fingerprint."""
     mesh, _ = joint2
     rom = tmp_path / "two.rom.h5"
     base = ["-mesh", mesh, "-preload_bolts", "1,2", "-fom", "true", "-rom", "true", "-load_force", "10",
             "-ts_end", "0.01", "-static", "false", "-modal_nev", "0", "-output", "false", "-rom_file", rom]
 
-    def run(f2, name):
-        s = run_summary(base + ["-preload_2_force", f2, "-output_dir", tmp_path / name], tmp_path, name=name)
+    def run(f2, name, extra=()):
+        s = run_summary(base + ["-preload_2_force", f2, "-output_dir", tmp_path / name] + list(extra), tmp_path, name=name)
         with h5py.File(rom, "r") as f:
             return s, f["/rom/fingerprint"].attrs["bolt_2_force"], f["/rom/preload_unit"][...]
 
@@ -98,7 +99,9 @@ def test_rom_of_two_bolts_follows_the_fom(joint2, tmp_path):
     # the ROM's preloaded state clamps as the FOM's: each stud read in V q (measured within 1e-10)
     for bolt, target in (("1", 20000.0), ("2", 15000.0)):
         assert abs(a["rom"]["bolt_stud_tension"][bolt] - target) <= 1e-6 * target, a["rom"]["bolt_stud_tension"]
-    b, fb, pb = run(10000, "b")
+    refused = run_boltrom(base + ["-preload_2_force", 10000], check=False)
+    assert refused.returncode != 0 and "bolt_2_force: the file has 15000., the scene 10000." in refused.stderr
+    b, fb, pb = run(10000, "b", ["-rom_rebuild", rom])
     assert b["rom"]["source"] == "built" and fb == 10000  # not the 15 kN file
     # another ROM: its opening shapes and preload differ (measured: dimension 174 against 168)
     assert pb.shape != pa.shape or np.abs(pb - pa).max() > 1e-3 * np.abs(pa).max()

@@ -186,9 +186,9 @@ def test_killed_rom_build_leaves_the_previous_rom_file(joint_small, tmp_path):
     common = ["-mesh", mesh, "-fom", "false", "-ts_end", "1e-4", "-rom_file", rom, "-output", "false"]
     run_boltrom(SCENE + common)
     old = rom.read_bytes()
-    kill_while_written(SCENE + common + ["-rom_n_ccm", "10", "-rom_n_jim", "10"], rom)
+    kill_while_written(SCENE + common + ["-rom_n_ccm", "10", "-rom_n_jim", "10", "-rom_rebuild", rom], rom)
     assert rom.read_bytes() == old
-    p = run_boltrom(SCENE + common + ["-rom_rebuild", "false"])
+    p = run_boltrom(SCENE + common)
     assert f"ROM: reusing {rom} (dimension" in p.stdout
 
 

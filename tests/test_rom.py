@@ -185,8 +185,10 @@ def test_rom_history_same_on_1_and_2_ranks(joint_small, tmp_path, shapes, bound)
 
 
 def test_rom_file_reuse_and_refusal(joint_small, tmp_path):
-    """One ROM file serves two load amplitudes without rebuilding; a changed material rebuilds it
-    (or is refused), and a load that is not an input is refused unless the user opts in."""
+    """One ROM file serves two load amplitudes without rebuilding; a changed material, friction
+    coefficient or stick stiffness is refused with the first difference and the file kept byte for
+    byte, or with -rom_rebuild FILE the ROM is built into FILE; a load that is not an input is
+    refused unless the user opts in."""
     from conftest import run_boltrom
     mesh, _ = joint_small
     rom_file = tmp_path / "joint.rom.h5"
@@ -200,9 +202,15 @@ def test_rom_file_reuse_and_refusal(joint_small, tmp_path):
     fresh = run_summary([x if x != rom_file else tmp_path / "fresh.h5" for x in base] + ["-load_force", "20"], tmp_path, name="fresh")
     assert fresh["rom"]["source"] == "built"
     assert abs(b["rom"]["probe_final"] - fresh["rom"]["probe_final"]) <= 1e-8 * abs(fresh["rom"]["probe_final"])
-    proc = run_boltrom(base + ["-material_steel_E", "200e9", "-rom_rebuild", "false", "-output_dir", tmp_path / "x"], check=False)
-    assert proc.returncode != 0 and "does not match this scene" in proc.stderr and "2e+11" in proc.stderr
-    c = run_summary(base + ["-material_steel_E", "200e9"], tmp_path, name="c")
+    kept = rom_file.read_bytes()
+    for change, words in ((["-material_steel_E", "200e9"], ["part_bolt_E: the file has 2.1e+11, the scene 2e+11"]),
+                          (["-contact_law", "coulomb", "-contact_friction", "0.2"], ["contact_law: the file has 'stick', the scene 'coulomb'"])):
+        proc = run_boltrom(base + change + ["-output_dir", tmp_path / "x"], check=False)
+        lines = [l for l in proc.stderr.splitlines() if l.strip()]
+        assert proc.returncode != 0 and len(lines) == 1 and "was built for another scene" in lines[0], proc.stderr
+        assert all(w in lines[0] for w in words) and "-rom_rebuild FILE" in lines[0], lines[0]
+        assert "FOM" not in proc.stdout and rom_file.read_bytes() == kept  # refused before any model runs
+    c = run_summary(base + ["-material_steel_E", "200e9", "-rom_rebuild", rom_file], tmp_path, name="c")  # overwritten on purpose
     assert c["rom"]["source"] == "built"
     proc = run_boltrom(base + ["-material_steel_E", "200e9", "-load_group", "corner_point", "-probe_group", "corner_point"], check=False)
     assert proc.returncode != 0 and "-rom_allow_foreign_load" in proc.stderr

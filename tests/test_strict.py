@@ -5,7 +5,7 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import ROOT, assert_uniform_contact, make_mesh, run_summary
+from conftest import ROOT, assert_uniform_contact, make_mesh, run_boltrom, run_summary
 
 STRICT = ["-contact_law", "strict"]
 FOM = ["-fom", "-static", "false", "-modal_nev", "0"]
@@ -128,9 +128,10 @@ def test_strict_joint_where_the_load_opens_it(joint_small, tmp_path, scene):
     assert fom["active_points"] < fom["contact_points"]
 
 
-def test_rom_file_of_another_law_is_rebuilt(joint_small, tmp_path):
+def test_rom_file_of_another_law_is_refused_or_rebuilt(joint_small, tmp_path):
     """The preloaded state a ROM file holds is per contact point: a file built under the stick
-    law (Gauss points) is rebuilt, not reused, under the strict law (nodal points)."""
+    law (Gauss points) is not reused under the strict law (nodal points): refused, or rebuilt
+    when -rom_rebuild names the file."""
     mesh, _ = joint_small
     rom_file = tmp_path / "joint.rom.h5"
     # one penalty for both laws, so that only the law tells the files apart
@@ -138,7 +139,9 @@ def test_rom_file_of_another_law_is_rebuilt(joint_small, tmp_path):
                       "-output", "false", "-contact_penalty_factor", "1e4"]
     first = run_summary(common + ["-contact_law", "stick"], tmp_path / "a")
     again = run_summary(common + ["-contact_law", "stick"], tmp_path / "b")
-    strict = run_summary(common + STRICT, tmp_path / "c")
+    refused = run_boltrom(common + STRICT, check=False)
+    assert refused.returncode != 0 and "contact_law: the file has 'stick', the scene 'strict'" in refused.stderr
+    strict = run_summary(common + STRICT + ["-rom_rebuild", str(rom_file)], tmp_path / "c")
     assert first["rom"]["source"] == "built" and again["rom"]["source"] == "file"
     assert strict["rom"]["source"] == "built"
 

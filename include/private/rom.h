@@ -55,8 +55,7 @@ struct _n_BoltReductionOptions {
   PetscInt   nCCM, nJIM;
   BoltKrylov *krylov;       /* the Krylov basis's options (-krylov_*), owned by the ROM */
   char       file[PETSC_MAX_PATH_LEN];
-  PetscBool  rebuild;       /* rebuild a ROM file that does not match (else refuse) */
-  PetscBool  rebuildSet;    /* -rom_rebuild given: a damaged file is rebuilt too */
+  char       rebuildFile[PETSC_MAX_PATH_LEN]; /* -rom_rebuild: where a ROM built in place of a -rom_file that does not match (or is damaged) goes; empty: refuse */
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
   PetscBool  checkOrthogonality;
   PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */

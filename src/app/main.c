@@ -105,6 +105,7 @@ static PetscErrorCode BoltRunMain(void)
   }
   PetscCall(BoltPreflightCheck(r.comm, &r.opt, r.rom, checkpointBase));
   PetscCall(BoltRunSetUp(&r));
+  if (r.opt.rom) PetscCall(BoltROMCheckFile(r.rom, r.asmb, r.contact, r.loads)); /* a ROM file of another scene: refused before the FOM runs */
   PetscCall(BoltOptionsCheckUnused(r.comm, BOLT_OPTIONS_BEFORE_SOLVE)); /* the per-pair options too */
   PetscCall(PetscLogStagePop());
   PetscCall(BoltMeshView(r.mesh, out));

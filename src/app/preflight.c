@@ -159,16 +159,17 @@ PetscErrorCode BoltPreflightSetFromOptions(MPI_Comm comm, const BoltRunOptions *
    made, as the files themselves are written without making one. */
 PetscErrorCode BoltPreflightCheck(MPI_Comm comm, const BoltRunOptions *o, BoltROM *rom, const char checkpointBase[])
 {
-  const char *romFile;
+  const char *romFile, *rebuildFile;
   PetscInt    snapshotModes;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltROMGetFile(rom, &romFile));
+  PetscCall(BoltROMGetFile(rom, &romFile, &rebuildFile));
   PetscCall(BoltROMGetSnapshotModes(rom, &snapshotModes));
   PetscCall(BoltOptionsCheckUnused(comm, BOLT_OPTIONS_BEFORE_SETUP));
   if (o->writeOutput) PetscCall(BoltCheckWritableDir(comm, o->outputDir, "-output_dir"));
   if (o->summary[0]) PetscCall(BoltCheckWritableParent(comm, o->summary, "-summary"));
   if (o->rom && romFile[0]) PetscCall(BoltCheckWritableParent(comm, romFile, "-rom_file"));
+  if (o->rom && rebuildFile[0]) PetscCall(BoltCheckWritableParent(comm, rebuildFile, "-rom_rebuild"));
   if (checkpointBase[0]) PetscCall(BoltCheckWritableParent(comm, checkpointBase, "the checkpoints (-checkpoint_file)"));
   if (o->exportDir[0]) PetscCall(BoltCheckWritableDir(comm, o->exportDir, "-export_matrices"));
   if (o->rom && snapshotModes > 0) { /* the modes come from this run's FOM, or from a ROM file built with them */
@@ -184,5 +185,6 @@ PetscErrorCode BoltPreflightCheck(MPI_Comm comm, const BoltRunOptions *o, BoltRO
   }
   if (o->summary[0]) PetscCall(BoltMakeParentDir(comm, o->summary));
   if (o->rom && romFile[0]) PetscCall(BoltMakeParentDir(comm, romFile));
+  if (o->rom && rebuildFile[0]) PetscCall(BoltMakeParentDir(comm, rebuildFile));
   PetscFunctionReturn(0);
 }

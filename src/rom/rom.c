@@ -165,7 +165,7 @@ static PetscErrorCode ROMRigidStiffness(BoltROM *rom, Mat *P)
   PetscReal          off = 0;
 
   PetscFunctionBeginUser;
-  PetscCheck(x, rom->comm, PETSC_ERR_ARG_WRONGSTATE, "The ROM of a free model has no rigid motions: rebuild it (-rom_rebuild)");
+  PetscCheck(x, rom->comm, PETSC_ERR_ARG_WRONGSTATE, "The ROM of a free model has no rigid motions: build it afresh (-rom_rebuild FILE)");
   PetscCall(PetscMalloc1(6 * n, &y));
   PetscCall(MatDenseGetArrayRead(rom->Mr, &mm));
   for (PetscInt c = 0; c < 6; c++) /* y = M_r x_c */

@@ -122,14 +122,14 @@ static PetscErrorCode BoltROMLoadPreloadState(BoltROM *rom, BoltContactSet *c, P
   PetscCall(BoltKeyIndexCreate(n, keys, &ix));
   PetscCall(PetscFree(keys));
   PetscCall(BoltReadAll(v, rom->comm, "state", &n, &x));
-  PetscCheck(n == BOLT_ROM_STATE * BoltKeyIndexSize(ix), rom->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged (preloaded state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements): rebuild it with -rom_rebuild", file, n, BoltKeyIndexSize(ix));
+  PetscCheck(n == BOLT_ROM_STATE * BoltKeyIndexSize(ix), rom->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged (preloaded state of %" PetscInt_FMT " values for %" PetscInt_FMT " elements): build a new one with -rom_rebuild FILE", file, n, BoltKeyIndexSize(ix));
   PetscCall(PetscMalloc4(12 * BoltContactSetElementCount(c) + 1, &rom->lambda0, 12 * BoltContactSetElementCount(c) + 1, &rom->gap0, 4 * BoltContactSetElementCount(c) + 1, &rom->active0, 4 * BoltContactSetElementCount(c) + 1, &rom->released0));
   PetscCall(PetscFree(rom->marked));
   PetscCall(PetscMalloc1(4 * BoltContactSetElementCount(c) + 1, &rom->marked));
   for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++) {
     PetscInt row;
     PetscCall(BoltKeyIndexFind(ix, BoltContactSetElementKey(c, e), &row));
-    PetscCheck(row >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for contact element %" PetscInt_FMT ": rebuild it with -rom_rebuild", file, BoltContactSetElementKey(c, e));
+    PetscCheck(row >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s has no preloaded state for contact element %" PetscInt_FMT ": build a new one with -rom_rebuild FILE", file, BoltContactSetElementKey(c, e));
     for (PetscInt i = 0; i < 12; i++) rom->lambda0[12 * e + i] = x[BOLT_ROM_STATE * row + i];
     for (PetscInt i = 0; i < 12; i++) rom->gap0[12 * e + i] = x[BOLT_ROM_STATE * row + 12 + i];
     for (PetscInt i = 0; i < 4; i++) {
@@ -319,7 +319,7 @@ static PetscErrorCode ROMLoadContactRows(BoltROM *rom, BoltContactSet *c, BoltLo
     for (PetscInt i = 0; i < BoltContactSetLocalSize(c); i++) {
       PetscInt key = (PetscInt)PetscRealPart(k[i]), loc;
       PetscCall(PetscFindInt(key, ncd, fileKey, &loc));
-      PetscCheck(loc >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT " (key %" PetscInt_FMT "): rebuild it with -rom_rebuild", file, BoltContactSetLocalGlobal(c)[i], key);
+      PetscCheck(loc >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s lacks the row of contact DOF %" PetscInt_FMT " (key %" PetscInt_FMT "): build a new one with -rom_rebuild FILE", file, BoltContactSetLocalGlobal(c)[i], key);
       for (PetscInt j = 0; j < n; j++) rom->Vc[i + BoltContactSetLocalSize(c) * j] = Vc[perm[loc] * n + j];
     }
     PetscCall(VecRestoreArrayRead(ckeys, &k));

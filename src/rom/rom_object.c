@@ -26,7 +26,7 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
 
   PetscFunctionBeginUser;
   o->file[0]     = '\0';
-  o->rebuild     = PETSC_TRUE;
+  o->rebuildFile[0] = '\0';
   o->extraInputs = PETSC_FALSE;
   o->checkOrthogonality = PETSC_FALSE;
   o->nCCM = o->nJIM = 100; /* the paper's */
@@ -39,7 +39,12 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
   PetscCall(PetscOptionsInt("-rom_n_ccm", "Interface reduction: characteristic constraint mode vectors (0 and -rom_n_jim 0: no interface reduction)", NULL, o->nCCM, &o->nCCM, NULL));
   PetscCall(PetscOptionsInt("-rom_n_jim", "Interface reduction: joint interface mode vectors", NULL, o->nJIM, &o->nJIM, NULL));
   PetscCall(PetscOptionsBool("-rom_check_orthogonality", "Measure max |V'V - I| of the basis (costs n^2 N)", NULL, o->checkOrthogonality, &o->checkOrthogonality, NULL));
-  PetscCall(PetscOptionsBool("-rom_rebuild", "Rebuild a ROM file that does not match the scene (false: refuse); given, a damaged one too", NULL, o->rebuild, &o->rebuild, &o->rebuildSet));
+  {
+    PetscBool set;
+    PetscCall(PetscOptionsString("-rom_rebuild", "If -rom_file does not match the scene or is damaged, build the ROM into this file (the same name overwrites it); else such a file is refused, kept as it is", NULL, o->rebuildFile, o->rebuildFile, sizeof(o->rebuildFile), &set));
+    /* (once a bool: a ROM file is no longer overwritten unless a file name says so) */
+    PetscCheck(!set || (o->rebuildFile[0] && strcmp(o->rebuildFile, "true") && strcmp(o->rebuildFile, "false") && strcmp(o->rebuildFile, "1") && strcmp(o->rebuildFile, "0")), comm, PETSC_ERR_USER_INPUT, "-rom_rebuild takes the file to build the ROM into (got '%s'), e.g. -rom_rebuild new.rom.h5; the same name as -rom_file overwrites that file", o->rebuildFile);
+  }
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   o->augment = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
@@ -171,7 +176,7 @@ PetscErrorCode BoltROMView(BoltROM *rom, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
   if (!iascii) PetscFunctionReturn(0);
   PetscCall(PetscViewerASCIIPrintf(viewer, "ROM: Krylov order %" PetscInt_FMT ", s0 %g rad/s, block size %" PetscInt_FMT ", deflation tol %g; CCM %" PetscInt_FMT " + JIM %" PetscInt_FMT "\n", k->order, (double)k->s0, k->blockSize, (double)k->deflationTol, o->nCCM, o->nJIM));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  file %s (%s)\n", o->file[0] ? o->file : "(none)", o->rebuild ? "rebuilt if it does not match" : "refused if it does not match"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  file %s (if it does not match: %s%s)\n", o->file[0] ? o->file : "(none)", o->rebuildFile[0] ? "built into " : "refused", o->rebuildFile));
   if (!rom->contact) PetscFunctionReturn(0); /* not set up: only the options as given */
   PetscCall(PetscViewerASCIIPrintf(viewer, "  dimension %" PetscInt_FMT " (%s), contact %s, preload state %s, static shapes %s\n", rom->n, rom->fromFile ? "from the file" : "built", rom->augment ? "augmented" : "penalty", PetscBools[rom->preloadState], PetscBools[rom->staticShapes]));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  penalty scale %g, band scale %g, static penalty scale %g\n", (double)rom->penaltyScale, (double)rom->bandScale, (double)rom->staticPenaltyScale));
@@ -221,10 +226,11 @@ PetscErrorCode BoltROMGetMatrices(BoltROM *rom, Mat *M, Mat *K)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BoltROMGetFile(BoltROM *rom, const char *file[])
+PetscErrorCode BoltROMGetFile(BoltROM *rom, const char *file[], const char *rebuild[])
 {
   PetscFunctionBeginUser;
   *file = rom->opt.file;
+  if (rebuild) *rebuild = rom->opt.rebuildFile;
   PetscFunctionReturn(0);
 }
 

@@ -2,6 +2,7 @@
    the fingerprint of what the basis depends on, and the reuse of a matching ROM file. */
 #include "private/rom.h"
 #include "private/boltrom_krylov.h"
+#include <petscviewerhdf5.h>
 
 /* The ROM's activation band (the tension at which a closed point opens), relative to the FOM's.
    Under the near-hard penalty a reduced gap error of a nanometre is a traction of megapascals:
@@ -102,8 +103,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
 }
 
 /* Whether an existing -rom_file is damaged or cut short (its seal, checked on rank 0). Such a file
-   is rebuilt only when -rom_rebuild is given: by default a file that does not match is rebuilt,
-   but damage means that something went wrong, which the user should hear of. */
+   is refused, as one that does not match, unless -rom_rebuild names a file to build into. */
 PetscErrorCode BoltROMCheckFileIntact(BoltROM *rom, PetscBool *damaged)
 {
   BoltReductionOptions *o    = &rom->opt;
@@ -121,12 +121,46 @@ PetscErrorCode BoltROMCheckFileIntact(BoltROM *rom, PetscBool *damaged)
   }
   PetscCallMPI(MPI_Bcast(&seal, 1, MPI_INT, 0, o->comm));
   *damaged = (PetscBool)(seal == BOLT_SEAL_BAD);
-  PetscCheck(!*damaged || (o->rebuild && o->rebuildSet), o->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged or cut short (it cannot be read through, or its data do not match the checksum written with it): rebuild it with -rom_rebuild true, or remove it", o->file);
+  PetscCheck(!*damaged || o->rebuildFile[0], o->comm, PETSC_ERR_FILE_UNEXPECTED, "ROM file %s is damaged or cut short (it cannot be read through, or its data do not match the checksum written with it): build a new one with -rom_rebuild FILE (the same name overwrites it), or remove it", o->file);
   PetscFunctionReturn(0);
 }
 
-/* Reads -rom_file into rom when the file exists and its fingerprint matches (*reused); else an
-   error, or a note that it is rebuilt (-rom_rebuild). */
+/* A -rom_file built for another scene (why: its first difference), unless -rom_rebuild names a
+   file to build into: refused, the file kept as it is. */
+static PetscErrorCode ROMRefuseOtherScene(BoltROM *rom, const char why[])
+{
+  BoltReductionOptions *o = &rom->opt;
+
+  PetscFunctionBeginUser;
+  PetscCheck(o->rebuildFile[0], o->comm, PETSC_ERR_USER_INPUT, "ROM file %s was built for another scene (%s) and is kept as it is: point -rom_file at a new file, or build one for this scene with -rom_rebuild FILE (the same name overwrites it)", o->file, why);
+  PetscFunctionReturn(0);
+}
+
+/* Before any model runs: an existing -rom_file built for another scene is refused now, not after
+   the FOM's run (its fingerprint against the scene's, the file not read further). */
+PetscErrorCode BoltROMCheckFile(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads)
+{
+  BoltReductionOptions *o = &rom->opt;
+  PetscBool             exists, matched;
+  PetscViewer           v;
+  char                  why[256];
+
+  PetscFunctionBeginUser;
+  if (!o->file[0] || o->rebuildFile[0]) PetscFunctionReturn(0);
+  PetscCall(PetscTestFile(o->file, 'r', &exists));
+  if (!exists) PetscFunctionReturn(0);
+  PetscCall(ROMResolveSettings(rom, asmb, contact, loads));
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, o->file, FILE_MODE_READ, &v));
+  PetscCall(BoltROMFingerprintMatch(&rom->fingerprint, v, &matched, why, sizeof(why)));
+  PetscCall(PetscViewerDestroy(&v));
+  if (!matched) PetscCall(ROMRefuseOtherScene(rom, why));
+  PetscFunctionReturn(0);
+}
+
+/* Reads -rom_file into rom when the file exists and its fingerprint matches (*reused). A file that
+   does not match is never overwritten unasked: a trained ROM once went that way, replaced by one
+   built without its training. It is refused with the first difference, or with -rom_rebuild FILE
+   the ROM is built for this scene into FILE, which becomes the run's ROM file. */
 PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0, PetscBool *reused)
 {
   BoltReductionOptions *o = &rom->opt;
@@ -140,7 +174,8 @@ PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *
   if (!exists) PetscFunctionReturn(0);
   PetscCall(BoltROMCheckFileIntact(rom, &damaged));
   if (damaged) {
-    PetscCall(PetscPrintf(o->comm, "ROM file %s is damaged or cut short: rebuilding it, as asked\n", o->file));
+    PetscCall(PetscPrintf(o->comm, "ROM file %s is damaged or cut short: building the ROM into %s, as asked (-rom_rebuild)\n", o->file, o->rebuildFile));
+    PetscCall(PetscStrncpy(o->file, o->rebuildFile, sizeof(o->file)));
     PetscFunctionReturn(0);
   }
   PetscCall(BoltROMLoad(o->file, rom, contact, loads, reused, why, sizeof(why)));
@@ -150,8 +185,9 @@ PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *
     PetscCall(PetscPrintf(o->comm, "ROM: reusing %s (dimension %" PetscInt_FMT "): the offline phase is skipped\n", o->file, rom->n));
     PetscFunctionReturn(0);
   }
-  PetscCheck(o->rebuild, o->comm, PETSC_ERR_USER_INPUT, "ROM file %s does not match this scene (%s): remove it, point -rom_file elsewhere, or let it be rebuilt with -rom_rebuild", o->file, why);
-  PetscCall(PetscPrintf(o->comm, "ROM file %s does not match this scene (%s): rebuilding it\n", o->file, why));
+  PetscCall(ROMRefuseOtherScene(rom, why));
+  PetscCall(PetscPrintf(o->comm, "ROM file %s does not match this scene (%s): building the ROM into %s, as asked (-rom_rebuild)\n", o->file, why, o->rebuildFile));
+  PetscCall(PetscStrncpy(o->file, o->rebuildFile, sizeof(o->file)));
   PetscFunctionReturn(0);
 }
 
