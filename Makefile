@@ -82,14 +82,19 @@ run: deps all $(MESH_LEVEL1)
 	  -summary output/paper-step/summary.json
 	$(PYTHON) python/plot_history.py output/paper-step/step.png output/paper-step/paper-step.h5
 
-# Every FOM setting and the ROMs against a tight reference in one run, on paper-step and on the
-# scenes that open part of the joint (BENCH_SCENES); FOM against ROM per mesh level.
+# Every FOM setting and the ROMs against a tight reference, each timed as the median of
+# BENCH_REPEATS runs, with each ROM's offline and training times and the runs after which it pays
+# off, on paper-step and on the scenes that open part of the joint (BENCH_SCENES) or are
+# frictional (BENCH_FRICTION_SCENES); then the frictional sweep end to end (dissipation per cycle
+# at 8 amplitudes, FOM against one ROM build and 8 ROM runs); FOM against ROM per mesh level.
 BENCH_SCENES ?= P5k-F100 P10k-F300 P2k-C300x P5k-F300y
 # frictional scenes (python/scenes.py), at the bench's level
 BENCH_FRICTION_SCENES ?= mu0.1-P5k-S100x
+BENCH_REPEATS ?= 5
 bench: deps all
-	$(PYTHON) scripts/bench-contact --np $(NP) --level $(LEVEL)
-	for s in $(BENCH_SCENES) $(BENCH_FRICTION_SCENES); do $(PYTHON) scripts/bench-contact --np $(NP) --level $(LEVEL) --scene $$s || exit 1; done
+	$(PYTHON) scripts/bench-contact --np $(NP) --level $(LEVEL) --repeats $(BENCH_REPEATS)
+	for s in $(BENCH_SCENES) $(BENCH_FRICTION_SCENES); do $(PYTHON) scripts/bench-contact --np $(NP) --level $(LEVEL) --repeats $(BENCH_REPEATS) --scene $$s || exit 1; done
+	$(PYTHON) scripts/bench-sweep --np $(NP) --level $(LEVEL) --results
 	$(PYTHON) scripts/bench-rom --np $(NP) --levels $(LEVELS)
 
 # The paper's figures 3-6, table 3 and the eigenfrequency table under the paper's contact law
