@@ -4,13 +4,15 @@ cut short or with flipped bytes. Each gives one line naming the problem and the 
 exit, and writes nothing (the damaged file itself is left as it was).
 
 Run: /usr/bin/python3 -m pytest -q tests/test_bad_input.py"""
+import json
+import re
 import shutil
 import sys
 
 import h5py
 import pytest
 
-from conftest import ROOT, run_boltrom
+from conftest import ROOT, run_boltrom, run_summary
 
 sys.path.insert(0, str(ROOT / "python"))
 import boltrom_mesh as bm  # noqa: E402
@@ -178,8 +180,8 @@ def test_damaged_checkpoint(files, tmp_path, how):
 
 # ------------------------------------------------------------- a ROM file built for another scene
 def test_rom_file_of_another_friction_is_kept_and_refused(joint_small, tmp_path):
-    """A ROM file built at mu 0.1: a run at mu 0.2 or with another stick stiffness is refused
-    before any model runs, naming the first difference, and the file stays byte for byte (a
+    """A ROM file built at mu 0.1: a run at mu 0.2, with another stick stiffness or slip tolerance
+    is refused before any model runs, naming the first difference, and the file stays byte for byte (a
     trained ROM was once replaced that way by one built without its training); -rom_rebuild FILE
     builds the ROM for the new scene into FILE, which the next run reuses."""
     rom = tmp_path / "mu0.1.rom.h5"
@@ -189,7 +191,9 @@ def test_rom_file_of_another_friction_is_kept_and_refused(joint_small, tmp_path)
     kept = rom.read_bytes()
     for change, first in ((["-contact_friction", "0.2"], "pair_head_washer_friction: the file has 0.1, the scene 0.2"),
                           (["-contact_friction", "0.1", "-contact_stick_stiffness_factor", "400"],
-                           "pair_head_washer_stick_stiffness: the file has 4.2e+13, the scene 8.4e+13")):
+                           "pair_head_washer_stick_stiffness: the file has 4.2e+13, the scene 8.4e+13"),
+                          (["-contact_friction", "0.1", "-contact_slip_angle_tolerance", "0.05"],
+                           "contact_slip_angle_tolerance: the file has 0.01, the scene 0.05")):
         line, out = one_line_error(args + change, tmp_path)
         assert line == (f"boltrom: error: ROM file {rom} was built for another scene ({first}) and is kept as it is: "
                         "point -rom_file at a new file, or build one for this scene with -rom_rebuild FILE (the same "
@@ -202,3 +206,45 @@ def test_rom_file_of_another_friction_is_kept_and_refused(joint_small, tmp_path)
     assert f"building the ROM into {new}, as asked (-rom_rebuild)" in p.stdout and rom.read_bytes() == kept
     p = run_boltrom([a if a != rom else new for a in args] + ["-contact_friction", "0.2", "-output", "false"])
     assert f"ROM: reusing {new}" in p.stdout
+
+
+@pytest.mark.parametrize("change,first", [
+    (["-load_direction", "1,0,0"], r"input_load: the file has 'load_point' along 0,0,-1, the scene 'load_point' along "
+                                   r"1,0,0; -rom_allow_foreign_load projects it with the rows the file keeps"),
+    (["-support_group", "corner_point"], r"support: the file has 'none', the scene 'corner_point:yz'"),
+    (["-preload_axis", "0,0,-1"], r"preload_axis: the file has '0,0,1', the scene '0,0,-1'"),
+    (["-contact_activation_gap", "1e-8"], r"contact_activation_gap: the file has [0-9.]+e-1[0-9], the scene 1e-08"),
+    (["-static_contact_load"], r"static_contact_load: the file has 0, the scene 1")])
+def test_rom_file_of_another_load_support_or_contact_setting_is_refused(files, tmp_path, change, first):
+    """The settings besides materials and friction that the basis, the stored load or the stored
+    preloaded state are solved with (once outside the fingerprint: a file built for a load along z
+    served a load along x with its z projection): each is refused before any model runs, naming
+    the first difference, and the file stays byte for byte."""
+    mesh, d = files
+    rom = tmp_path / "rom.h5"
+    shutil.copy(d / "rom.h5", rom)
+    kept = rom.read_bytes()
+    line, out = one_line_error(SCENE + ["-mesh", mesh, "-fom", "false", "-ts_end", "1e-4", "-rom_file", rom] + change, tmp_path)
+    assert re.fullmatch(f"boltrom: error: ROM file {re.escape(str(rom))} was built for another scene \\({first}\\) and is "
+                        r"kept as it is: point -rom_file at a new file, or build one for this scene with -rom_rebuild FILE "
+                        r"\(the same name overwrites it\)", line), line
+    assert "ROM:" not in out and rom.read_bytes() == kept
+
+
+def test_rom_file_serves_another_direction_only_when_asked(files, tmp_path):
+    """With -rom_allow_foreign_load a load along another direction is projected with the rows the
+    file keeps at its point: reversed, the ROM's response reverses (the file's own projection, along
+    the old direction, would have given the same sign). -rom_rebuild needs a -rom_file to replace."""
+    mesh, d = files
+    args = SCENE + ["-mesh", mesh, "-fom", "false", "-ts_end", "1e-3", "-rom_file", d / "rom.h5", "-output", "false"]
+    kept = (d / "rom.h5").read_bytes()
+    own = run_summary(args, tmp_path, name="own")["rom"]
+    p = run_boltrom(args + ["-load_direction", "0,0,1", "-rom_allow_foreign_load", "-summary", tmp_path / "up.json"])
+    up = json.loads((tmp_path / "up.json").read_text())["rom"]
+    assert "ROM: the load at 'load_point' along 0,0,1 is not the input of" in p.stdout
+    assert own["source"] == up["source"] == "file" and (d / "rom.h5").read_bytes() == kept
+    print("probe at the end, the file's direction and reversed:", own["probe_final"], up["probe_final"])
+    assert own["probe_final"] < 0 < up["probe_final"] and up["probe_final"] == pytest.approx(-own["probe_final"], rel=0.2)
+    line, _ = one_line_error(SCENE + ["-mesh", mesh, "-rom_file", "", "-rom_rebuild", tmp_path / "new.h5"], tmp_path)
+    assert line == (f"boltrom: error: -rom_rebuild {tmp_path / 'new.h5'} replaces a -rom_file that does not match the "
+                    f"scene, but -rom_file is empty: give -rom_file {tmp_path / 'new.h5'} to build the ROM into that file")

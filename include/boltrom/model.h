@@ -34,6 +34,7 @@ PetscInt        BoltMeshCellPart(const BoltMesh *, PetscInt);
 PetscInt        BoltMeshPointOriginal(const BoltMesh *, PetscInt);
 const char     *BoltMeshClampGroup(const BoltMesh *);
 const char     *BoltMeshSupportGroup(const BoltMesh *);
+PetscInt        BoltMeshSupportComponents(const BoltMesh *, const PetscInt **);
 PetscErrorCode  BoltMeshPartValuesWrite(const BoltMesh *, BoltJSON *, const char[], const PetscInt[], const PetscReal[]);
 PetscErrorCode  BoltMeshSummaryWrite(const BoltMesh *, BoltJSON *);
 /* Part p's material: its name, Young's modulus [Pa], Poisson's ratio and density [kg/m^3] */
@@ -74,6 +75,7 @@ Vec              BoltLoadSetPreload(const BoltLoadSet *);
 PetscBool        BoltLoadSetHasPreload(const BoltLoadSet *);
 PetscReal        BoltLoadSetPreloadForce(const BoltLoadSet *);
 const char      *BoltLoadSetPreloadGroup(const BoltLoadSet *, PetscInt);
+const PetscReal *BoltLoadSetPreloadAxis(const BoltLoadSet *);
 const char      *BoltLoadSetLoadGroup(const BoltLoadSet *);
 PetscReal        BoltLoadSetLoadForce(const BoltLoadSet *);
 const PetscReal *BoltLoadSetLoadDirection(const BoltLoadSet *);

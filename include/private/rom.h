@@ -40,6 +40,7 @@ PetscErrorCode BoltROMFingerprintString(BoltROMFingerprint *, const char[], cons
 PetscErrorCode BoltROMFingerprintScene(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscInt, PetscReal, PetscReal, PetscInt, PetscInt, BoltROMFingerprint *);
 PetscErrorCode BoltROMFingerprintWrite(const BoltROMFingerprint *, PetscViewer);
 PetscErrorCode BoltROMFingerprintMatch(const BoltROMFingerprint *, PetscViewer, PetscBool *, char[], size_t);
+PetscErrorCode BoltROMFingerprintMatchLoad(PetscViewer, BoltLoadSet *, PetscBool, PetscBool *, PetscBool *, char[], size_t);
 
 
 struct _n_BoltROMFingerprintField {

@@ -92,6 +92,30 @@ PetscReal BoltContactSetPenaltyFactor(const BoltContactSet *c)
   return c->penaltyFactor;
 }
 
+/* The law's settings that decide the contact state besides the pairs' own: the penetration at
+   which an open point closes [m], the node matching tolerance (relative), the stick law's opening
+   test (the strict laws judge at the nodes), and friction's slip tolerances. */
+PetscReal BoltContactSetActivationGap(const BoltContactSet *c)
+{
+  return c->activationGap;
+}
+
+PetscReal BoltContactSetMatchTolerance(const BoltContactSet *c)
+{
+  return c->matchTolerance;
+}
+
+const char *BoltContactSetOpenTest(const BoltContactSet *c)
+{
+  return BoltContactSetIsComplementarity(c) || c->openTest == BOLT_OPEN_NODAL ? "nodal" : "gauss";
+}
+
+void BoltContactSetSlipTolerances(const BoltContactSet *c, PetscReal *angle, PetscReal *stiffnessRatio)
+{
+  *angle          = c->slipAngleTolerance;
+  *stiffnessRatio = c->slipStiffnessRatio;
+}
+
 /* The shortest edge of a contact face (global) [m]. */
 PetscReal BoltContactSetMinEdge(const BoltContactSet *c)
 {

@@ -26,6 +26,10 @@ const char *BoltLoadSetPreloadGroup(const BoltLoadSet *l, PetscInt side)
 {
   return l->preloadGroup[side];
 }
+const PetscReal *BoltLoadSetPreloadAxis(const BoltLoadSet *l)
+{
+  return l->preloadAxis;
+}
 const char *BoltLoadSetLoadGroup(const BoltLoadSet *l)
 {
   return l->loadGroup;

@@ -68,6 +68,13 @@ const char *BoltMeshSupportGroup(const BoltMesh *m)
   return m->supportGroup;
 }
 
+/* The components held at the support group (ascending), and their count. */
+PetscInt BoltMeshSupportComponents(const BoltMesh *m, const PetscInt **components)
+{
+  *components = m->supportComponents;
+  return m->nsupportComponents;
+}
+
 /* A JSON object of one value per part, keyed by the part names: the integers vi, or else the
    reals vr. */
 PetscErrorCode BoltMeshPartValuesWrite(const BoltMesh *m, BoltJSON *j, const char key[], const PetscInt vi[], const PetscReal vr[])

@@ -1,7 +1,8 @@
 /* The ROM file (HDF5): everything the online phase needs, and the fingerprint of what the basis
-   depends on (fingerprint.c; which loads are inputs, not their amplitudes). A scene with a matching file skips the offline phase; a file that does
-   not match is rebuilt or refused, never used silently. Rows of the basis are kept only at the
-   contact DOFs and at the point groups (loads, probes). */
+   depends on (fingerprint.c; which load is the input, group and direction, not its amplitude).
+   A scene with a matching file skips the offline phase; a file that does not match is refused,
+   or with -rom_rebuild another is built, never used silently. Rows of the basis are kept only at
+   the contact DOFs and at the point groups (loads, probes). */
 #include "private/rom.h"
 #include <petscviewerhdf5.h>
 
@@ -261,6 +262,9 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(BoltROMFingerprintWrite(&rom->fingerprint, v));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, groups));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "input_load", PETSC_STRING, BoltLoadSetLoadGroup(loads)));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "input_direction_x", PETSC_REAL, &BoltLoadSetLoadDirection(loads)[0]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "input_direction_y", PETSC_REAL, &BoltLoadSetLoadDirection(loads)[1]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "input_direction_z", PETSC_REAL, &BoltLoadSetLoadDirection(loads)[2]));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "dimension", PETSC_INT, &n));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "order", PETSC_INT, &rom->order));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "inputs", PETSC_INT, &rom->ninputs));
@@ -332,7 +336,8 @@ static PetscErrorCode ROMLoadContactRows(BoltROM *rom, BoltContactSet *c, BoltLo
 }
 
 /* Reads a matching ROM file into rom (its settings resolved). *matched is false (and nothing is
-   read) when the fingerprint differs; *why then says what differs first. */
+   read) when the fingerprint differs or the file does not serve the scene's load or probe; *why
+   then says what differs first. */
 PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, BoltLoadSet *loads, PetscBool *matched, char why[], size_t whylen)
 {
   BoltReductionOptions *o    = &rom->opt;
@@ -347,6 +352,7 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
   *matched = PETSC_FALSE;
   PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, file, FILE_MODE_READ, &v));
   PetscCall(BoltROMFingerprintMatch(&rom->fingerprint, v, matched, why, whylen));
+  if (*matched) PetscCall(BoltROMFingerprintMatchLoad(v, loads, o->extraInputs, matched, &same, why, whylen));
   if (!*matched) {
     PetscCall(PetscViewerDestroy(&v));
     PetscFunctionReturn(0);
@@ -399,8 +405,7 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &rom->loadr));
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &rom->preloadr));
     PetscCall(PetscMalloc1(n + 1, &a));
-    PetscCall(PetscStrcmp(input, BoltLoadSetLoadGroup(loads), &same));
-    if (same) {
+    if (same) { /* the file's input load (BoltROMFingerprintMatchLoad) */
       PetscCall(BoltReadArray(v, "load_unit", n, 1, a));
       for (PetscInt j = 0; j < n; j++) a[j] *= BoltLoadSetLoadForce(loads);
     } else {
@@ -410,13 +415,12 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
         PetscCall(PetscStrcmp(names[k], BoltLoadSetLoadGroup(loads), &s));
         if (s) g = k;
       }
-      PetscCheck(o->extraInputs, comm, PETSC_ERR_USER_INPUT, "ROM file %s was built for the load at '%s', not at '%s': rebuild it for this load, or run it anyway with -rom_allow_foreign_load (the load then acts through a basis that was not built for it)", file, input, BoltLoadSetLoadGroup(loads));
-      PetscCheck(g >= 0, comm, PETSC_ERR_USER_INPUT, "ROM file %s has no rows of the basis at '%s' (it has %s): the load cannot be projected; rebuild the ROM", file, BoltLoadSetLoadGroup(loads), groups);
+      PetscCheck(g >= 0, comm, PETSC_ERR_PLIB, "ROM file %s: no rows at '%s'", file, BoltLoadSetLoadGroup(loads));
       for (PetscInt j = 0; j < n; j++) {
         a[j] = 0;
         for (PetscInt d = 0; d < 3; d++) a[j] += BoltLoadSetLoadForce(loads) * BoltLoadSetLoadDirection(loads)[d] * Vpoints[(3 * g + d) * n + j];
       }
-      PetscCall(PetscPrintf(comm, "ROM: the load at '%s' is not an input of %s (built for '%s'): projected with the stored rows, as asked\n", BoltLoadSetLoadGroup(loads), file, input));
+      PetscCall(PetscPrintf(comm, "ROM: the load at '%s' along %.17g,%.17g,%.17g is not the input of %s (built for '%s'): projected with the stored rows, as asked\n", BoltLoadSetLoadGroup(loads), (double)BoltLoadSetLoadDirection(loads)[0], (double)BoltLoadSetLoadDirection(loads)[1], (double)BoltLoadSetLoadDirection(loads)[2], file, input));
     }
     {
       PetscScalar *x;
@@ -436,7 +440,7 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
         PetscCall(PetscStrcmp(names[k], BoltLoadSetProbeGroup(loads), &s));
         if (s) g = k;
       }
-      PetscCheck(g >= 0, comm, PETSC_ERR_USER_INPUT, "ROM file %s has no rows of the basis at the probe '%s' (it has %s): rebuild the ROM", file, BoltLoadSetProbeGroup(loads), groups);
+      PetscCheck(g >= 0, comm, PETSC_ERR_PLIB, "ROM file %s: no rows at the probe '%s'", file, BoltLoadSetProbeGroup(loads));
       PetscCall(PetscMalloc1(n + 1, &rom->Vprobe));
       for (PetscInt j = 0; j < n; j++) rom->Vprobe[j] = PetscRealPart(Vpoints[(3 * g + BoltLoadSetProbeComponent(loads)) * n + j]);
     }

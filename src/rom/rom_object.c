@@ -44,6 +44,8 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
     PetscCall(PetscOptionsString("-rom_rebuild", "If -rom_file does not match the scene or is damaged, build the ROM into this file (the same name overwrites it); else such a file is refused, kept as it is", NULL, o->rebuildFile, o->rebuildFile, sizeof(o->rebuildFile), &set));
     /* (once a bool: a ROM file is no longer overwritten unless a file name says so) */
     PetscCheck(!set || (o->rebuildFile[0] && strcmp(o->rebuildFile, "true") && strcmp(o->rebuildFile, "false") && strcmp(o->rebuildFile, "1") && strcmp(o->rebuildFile, "0")), comm, PETSC_ERR_USER_INPUT, "-rom_rebuild takes the file to build the ROM into (got '%s'), e.g. -rom_rebuild new.rom.h5; the same name as -rom_file overwrites that file", o->rebuildFile);
+    /* it replaces a -rom_file: with none it would be ignored without a word */
+    PetscCheck(!set || o->file[0], comm, PETSC_ERR_USER_INPUT, "-rom_rebuild %s replaces a -rom_file that does not match the scene, but -rom_file is empty: give -rom_file %s to build the ROM into that file", o->rebuildFile, o->rebuildFile);
   }
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   o->augment = PETSC_FALSE;

@@ -136,14 +136,15 @@ static PetscErrorCode ROMRefuseOtherScene(BoltROM *rom, const char why[])
   PetscFunctionReturn(0);
 }
 
-/* Before any model runs: an existing -rom_file built for another scene is refused now, not after
-   the FOM's run (its fingerprint against the scene's, the file not read further). */
+/* Before any model runs: an existing -rom_file built for another scene, or for another load, is
+   refused now, not after the FOM's run (its fingerprint and input against the scene's, the file
+   not read further). */
 PetscErrorCode BoltROMCheckFile(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads)
 {
   BoltReductionOptions *o = &rom->opt;
-  PetscBool             exists, matched;
+  PetscBool             exists, matched, native;
   PetscViewer           v;
-  char                  why[256];
+  char                  why[512];
 
   PetscFunctionBeginUser;
   if (!o->file[0] || o->rebuildFile[0]) PetscFunctionReturn(0);
@@ -152,6 +153,7 @@ PetscErrorCode BoltROMCheckFile(BoltROM *rom, BoltAssembler *asmb, BoltContactSe
   PetscCall(ROMResolveSettings(rom, asmb, contact, loads));
   PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, o->file, FILE_MODE_READ, &v));
   PetscCall(BoltROMFingerprintMatch(&rom->fingerprint, v, &matched, why, sizeof(why)));
+  if (matched) PetscCall(BoltROMFingerprintMatchLoad(v, loads, o->extraInputs, &matched, &native, why, sizeof(why)));
   PetscCall(PetscViewerDestroy(&v));
   if (!matched) PetscCall(ROMRefuseOtherScene(rom, why));
   PetscFunctionReturn(0);
@@ -166,7 +168,7 @@ PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *
   BoltReductionOptions *o = &rom->opt;
   PetscLogDouble        t3;
   PetscBool             exists, damaged;
-  char                  why[256];
+  char                  why[512];
 
   PetscFunctionBeginUser;
   *reused = PETSC_FALSE;
