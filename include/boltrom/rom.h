@@ -35,6 +35,8 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *);
 PetscErrorCode BoltROMSolversSetFromOptions(BoltROM *);
 PetscErrorCode BoltROMCheckOptions(BoltROM *, BoltContactSet *);
 PetscErrorCode BoltROMSetTraining(BoltROM *, const BoltPreloadState *, PetscInt, Vec[]);
+PetscErrorCode BoltROMSetTrainingChanges(BoltROM *, const PetscBool[]);
+PetscBool      BoltROMIsTrained(const BoltROM *);
 PetscErrorCode BoltROMSetUp(BoltROM *, BoltAssembler *, BoltContactSet *, BoltLoadSet *);
 PetscErrorCode BoltROMView(BoltROM *, PetscViewer);
 PetscErrorCode BoltROMSummaryWrite(BoltROM *, BoltJSON *);

@@ -31,6 +31,12 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
 PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact);
 PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0, PetscBool *reused);
 PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0);
+PetscInt       ROMPreloadInputs(BoltLoadSet *loads);
+PetscErrorCode ROMInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, const PetscBool select[], BV *B, PetscInt *ncols, PetscInt *npairsOut);
+PetscErrorCode ROMInsertPreloadInputs(BV B, PetscInt col, BoltLoadSet *loads);
+PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V);
+PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads);
+PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BV *B, Mat *Kheld);
 PetscErrorCode ROMOnlineDestroy(BoltROM *rom);
 PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet *loads, const char file[]);
 PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, BoltLoadSet *loads, PetscBool *matched, char why[], size_t whylen);
@@ -83,6 +89,8 @@ struct _n_BoltReductionOptions {
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
   PetscInt   nFomSnapshots;                 /* the FOM's displacement snapshots of this run (-snapshot_every) */
   Vec       *fomSnapshots;
+  PetscBool  trained;                       /* -rom_train: inputs where the FOM's run changed the contact (trained.c) */
+  const PetscBool *fomChanged;              /* the FOM's run: per local contact point, its state left the preloaded one */
 };
 
 struct _n_BoltROMFingerprint {

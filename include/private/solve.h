@@ -131,6 +131,9 @@ struct _n_BoltNewmark {
   Vec            *snap;
   PetscReal      *snapTime;
   unsigned char  *snapCodes;  /* per snapshot, each local contact point's state (BoltContactStatePointCodes) */
+  unsigned char  *codes0, *codesNow; /* each local contact point's state after the preload, and now */
+  PetscBool      *changed;    /* per local contact point: its state has differed from the preloaded one after some step */
+  PetscBool       trackChanges; /* record changed (BoltNewmarkTrackChanges) */
   PetscReal       tOnline;
   PetscReal       staticOuter, staticInner;
   PetscInt        staticFactorizations, staticSolves;
@@ -145,6 +148,10 @@ struct _n_BoltNewmark {
 /* dual_check.c: every node pair checked after each converged transient step */
 PetscErrorCode BoltDualCheckStep(BoltDual *, Vec);
 PetscErrorCode BoltDualCheckSummaryWrite(BoltDual *, BoltJSON *);
+
+/* newmark_results.c: the contact points whose state the transient changed (a trained ROM's inputs) */
+PetscErrorCode BoltNewmarkTrackStart(BoltNewmark *);
+void           BoltNewmarkTrackStep(BoltNewmark *);
 
 /* preload_bolts.c: several bolts, each calibrated to its own clamp force */
 PetscErrorCode BoltNewmarkPreloadBolts(BoltNewmark *, PetscInt *, PetscInt *);

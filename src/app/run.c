@@ -212,6 +212,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
     PetscCall(BoltNewmarkReleaseSolver(r->fomNm));
     PetscFunctionReturn(0);
   }
+  if (r->opt.rom && BoltROMIsTrained(r->rom)) BoltNewmarkTrackChanges(r->fomNm); /* what -rom_train learns */
   PetscCall(PetscLogStagePush(BOLT_STAGE_TRANSIENT));
   PetscCall(BoltNewmarkRun(r->fomNm));
   PetscCall(PetscLogStagePop());
@@ -267,6 +268,11 @@ PetscErrorCode BoltRunROM(BoltRun *r)
     Vec     *snap  = NULL;
     if (s->fomRun) PetscCall(BoltNewmarkGetSnapshots(s->fomRun, &nsnap, &snap, NULL, NULL));
     PetscCall(BoltROMSetTraining(r->rom, r->fomPreload, nsnap, snap));
+    {
+      const PetscBool *changed = NULL;
+      if (s->fomRun) PetscCall(BoltNewmarkGetChangedPoints(s->fomRun, &changed));
+      PetscCall(BoltROMSetTrainingChanges(r->rom, changed));
+    }
   }
   PetscCall(BoltROMSetUp(r->rom, r->asmb, r->contact, r->loads));
   PetscCall(BoltPreloadStateDestroy(&r->fomPreload));

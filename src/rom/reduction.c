@@ -5,48 +5,6 @@
 #include "private/boltrom_krylov.h"
 #include "private/boltrom_interface.h"
 
-/* The preload's inputs: one column, or with several bolts (-preload_bolts) one per bolt, its 1 N
-   layer pattern: the bolts' forces are calibrated apart (by the FOM), so the basis must hold
-   each bolt's response, not one fixed mix of them. */
-static PetscInt BoltPreloadInputs(BoltLoadSet *loads)
-{
-  return PetscMax(1, BoltLoadSetBoltCount(loads));
-}
-
-static PetscErrorCode BoltInsertPreloadInputs(BV B, PetscInt col, BoltLoadSet *loads)
-{
-  PetscFunctionBeginUser;
-  if (!BoltLoadSetBoltCount(loads)) PetscCall(BVInsertVec(B, col, BoltLoadSetPreload(loads)));
-  for (PetscInt b = 0; b < BoltLoadSetBoltCount(loads); b++) PetscCall(BVInsertVec(B, col + b, BoltLoadSetBoltUnit(loads, b)));
-  PetscFunctionReturn(0);
-}
-
-/* Columns e_a - e_b for every matched node pair and direction, then the load and the preload. */
-static PetscErrorCode BoltInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, BV *B, PetscInt *ncols)
-{
-  PetscInt npairs, *pairs, col = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(BoltNodePairs(c, NULL, &npairs, &pairs));
-  *ncols = 3 * npairs + 1 + BoltPreloadInputs(loads);
-  PetscCall(BVCreate(BoltMeshComm(BoltContactSetMesh(c)), B));
-  PetscCall(BVSetSizesFromVec(*B, layout, *ncols));
-  PetscCall(BVSetFromOptions(*B));
-  PetscCall(BoltBVTolerateCancellation(*B));
-  for (PetscInt i = 0; i < npairs; i++)
-    for (PetscInt d = 0; d < 3; d++) {
-      Vec v;
-      PetscCall(BVGetColumn(*B, col, &v));
-      PetscCall(BoltNodePairVector(pairs[2 * i], pairs[2 * i + 1], d, v));
-      PetscCall(BVRestoreColumn(*B, col, &v));
-      col++;
-    }
-  PetscCall(BVInsertVec(*B, col++, BoltLoadSetLoadUnit(loads)));
-  PetscCall(BoltInsertPreloadInputs(*B, col, loads));
-  PetscCall(PetscFree(pairs));
-  PetscFunctionReturn(0);
-}
-
 /* Rows of V at this rank's contact DOFs (through the contact scatter) and at the probe. */
 static PetscErrorCode BoltROMExtractRows(BoltROM *rom, BV V, BoltLoadSet *loads)
 {
@@ -273,7 +231,8 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscLogDouble        t1, t2, t3;
   PetscBool             staticShapes       = rom->staticShapes;
   PetscReal             staticPenaltyScale = rom->staticPenaltyScale;
-  Mat                   K, M;
+  Vec                   q0keep = NULL;
+  Mat                   K, M, Kheld = NULL; /* a trained ROM's Krylov stiffness: K + K_c of the preloaded joint */
 
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMatrices(asmb, &K, &M));
@@ -289,22 +248,24 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     PetscCall(BoltInterfaceBuild(contact, M, C, K, kry->s0, o->nCCM, o->nJIM, kry->deflationTol, &ir));
     PetscCall(PetscLogEventEnd(BOLT_EVENT_INTERFACE_REDUCTION, 0, 0, 0, 0));
     PetscCall(BVCreate(o->comm, &B));
-    PetscCall(BVSetSizesFromVec(B, BoltLoadSetLoad(loads), ir->nIR + 1 + BoltPreloadInputs(loads)));
+    PetscCall(BVSetSizesFromVec(B, BoltLoadSetLoad(loads), ir->nIR + 1 + ROMPreloadInputs(loads)));
     PetscCall(BVSetFromOptions(B));
     PetscCall(BoltBVTolerateCancellation(B));
     PetscCall(BoltInterfaceInputs(ir, B, 0));
     PetscCall(BVInsertVec(B, ir->nIR, BoltLoadSetLoadUnit(loads)));
-    PetscCall(BoltInsertPreloadInputs(B, ir->nIR + 1, loads));
-    rom->ninputs  = ir->nIR + 1 + BoltPreloadInputs(loads);
+    PetscCall(ROMInsertPreloadInputs(B, ir->nIR + 1, loads));
+    rom->ninputs  = ir->nIR + 1 + ROMPreloadInputs(loads);
     kry->solve    = BoltInterfaceSolve;
     kry->solveCtx = ir;
     rom->nCCM     = ir->rankCCM;
     rom->nJIM     = ir->rankJIM;
-  } else PetscCall(BoltInputMatrix(contact, loads, BoltLoadSetLoad(loads), &B, &rom->ninputs));
+  } else if (o->trained) PetscCall(ROMTrainedInputs(rom, asmb, contact, loads, &B, &Kheld));
+  else PetscCall(ROMInputMatrix(contact, loads, BoltLoadSetLoad(loads), NULL, &B, &rom->ninputs, NULL));
   PetscCall(PetscTime(&t1));
   rom->tInterface = t1 - t0;
   PetscCall(PetscLogEventBegin(BOLT_EVENT_BASIS, 0, 0, 0, 0));
-  PetscCall(BoltKrylovBuild(kry, M, C, K, B, &V));
+  PetscCall(BoltKrylovBuild(kry, M, C, Kheld ? Kheld : K, B, &V));
+  PetscCall(MatDestroy(&Kheld));
   PetscCall(PetscLogEventEnd(BOLT_EVENT_BASIS, 0, 0, 0, 0));
   PetscCall(BoltInterfaceDestroy(&ir)); /* its factorisations are not needed from here on */
   kry->solve    = NULL;
@@ -324,6 +285,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->closedKeepActive, rom->openingScale, rom->nOpenKrylov, o->fomPreload, o->nFomSnapshots, o->fomSnapshots, &nextra, &extra, &preloadCalibrated));
     PetscCall(BoltMemoryPrint(o->comm, "the preloaded state's static solves"));
     PetscCall(BoltAssemblerDamping(asmb, &C));
+    if (o->trained) { PetscCall(VecDuplicate(extra[0], &q0keep)); PetscCall(VecCopy(extra[0], q0keep)); }
     PetscCall(BoltBasisAppend(V, "static shapes", 2 + o->nClosed, extra, 0, &added));
     PetscCall(BoltBasisAppend(V, "opening shapes", nextra - 2 - o->nClosed, extra + 2 + o->nClosed, kry->deflationTol, &added));
     for (PetscInt k = 0; k < nextra; k++) PetscCall(VecDestroy(&extra[k]));
@@ -344,6 +306,12 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     for (PetscInt k = 0; k < nmodes; k++) PetscCall(VecDestroy(&modes[k]));
     PetscCall(PetscFree(modes));
   }
+  if (o->trained) { /* the preloaded state itself presses the held pairs: it joins untied */
+    PetscInt added;
+    PetscCall(ROMTieHeld(rom, contact, V));
+    PetscCall(BoltBasisAppend(V, "preloaded state, untied", 1, &q0keep, kry->deflationTol, &added));
+  }
+  PetscCall(VecDestroy(&q0keep));
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   if (rom->rigid) PetscCall(ROMRigidCoordinates(rom, V));

@@ -256,8 +256,9 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   }
   /* with opening shapes, only the points the opening solves changed may change state: the basis
      has no shapes to open the others, and freed they chattered at the washers' rims (the
-     augmented ROM, without interface reduction, can open any pair) */
-  PetscCall(BoltContactStateSetMayChange(BoltOperatorState(op), (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment) ? rom->marked : NULL));
+     augmented ROM, without interface reduction, can open any pair); a trained ROM holds every
+     point its FOM did not change, even when that FOM changed none */
+  PetscCall(BoltContactStateSetMayChange(BoltOperatorState(op), ((rom->opt.trained && rom->marked) || (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment)) ? rom->marked : NULL));
   PetscCall(ROMSetUpGapRows(rom, BoltContactStateMayChange(BoltOperatorState(op))));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_GAPS, (void (*)(void))ROMContactGaps));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_OPEN_TRACTION, (void (*)(void))ROMOpenTraction));

@@ -47,6 +47,7 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
     /* it replaces a -rom_file: with none it would be ignored without a word */
     PetscCheck(!set || o->file[0], comm, PETSC_ERR_USER_INPUT, "-rom_rebuild %s replaces a -rom_file that does not match the scene, but -rom_file is empty: give -rom_file %s to build the ROM into that file", o->rebuildFile, o->rebuildFile);
   }
+  PetscCall(PetscOptionsBool("-rom_train", "Build the ROM from this run's FOM: inputs where its contact changed state, the other closed pairs held (strict law; needs -fom true)", NULL, o->trained, &o->trained, NULL));
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   o->augment = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
@@ -132,6 +133,7 @@ PetscErrorCode BoltROMCheckOptions(BoltROM *rom, BoltContactSet *contact)
 
   PetscFunctionBeginUser;
   PetscCheck(o->coneShapes == 0 || BoltContactSetHasFriction(contact), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes needs a frictional law: add -contact_law coulomb (the %s law has no cone)", BoltContactSetLawType(contact));
+  PetscCheck(!o->trained || !BoltContactSetHasFriction(contact), rom->comm, PETSC_ERR_SUP, "-rom_train ties the pairs it holds, which friction's sticking springs are not: drop -rom_train under -contact_law %s", BoltContactSetLawType(contact));
   PetscCheck(o->coneModes == 0 || (o->coneShapes > 0 && o->nSnapshotModes > 0), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_modes compresses cone shapes with a training run's snapshots: add -rom_cone_shapes r and -rom_snapshot_modes k");
   PetscFunctionReturn(0);
 }
@@ -180,7 +182,7 @@ PetscErrorCode BoltROMView(BoltROM *rom, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "ROM: Krylov order %" PetscInt_FMT ", s0 %g rad/s, block size %" PetscInt_FMT ", deflation tol %g; CCM %" PetscInt_FMT " + JIM %" PetscInt_FMT "\n", k->order, (double)k->s0, k->blockSize, (double)k->deflationTol, o->nCCM, o->nJIM));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  file %s (if it does not match: %s%s)\n", o->file[0] ? o->file : "(none)", o->rebuildFile[0] ? "built into " : "refused", o->rebuildFile));
   if (!rom->contact) PetscFunctionReturn(0); /* not set up: only the options as given */
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  dimension %" PetscInt_FMT " (%s), contact %s, preload state %s, static shapes %s\n", rom->n, rom->fromFile ? "from the file" : "built", rom->augment ? "augmented" : "penalty", PetscBools[rom->preloadState], PetscBools[rom->staticShapes]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  dimension %" PetscInt_FMT " (%s%s), contact %s, preload state %s, static shapes %s\n", rom->n, rom->fromFile ? "from the file" : "built", o->trained ? ", trained: held pairs tied" : "", rom->augment ? "augmented" : "penalty", PetscBools[rom->preloadState], PetscBools[rom->staticShapes]));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  penalty scale %g, band scale %g, static penalty scale %g\n", (double)rom->penaltyScale, (double)rom->bandScale, (double)rom->staticPenaltyScale));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  closed-contact Krylov %" PetscInt_FMT " (%s), opening shapes at %g x the load, %" PetscInt_FMT " opened-joint Krylov, slip shapes at %g x\n", rom->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free", (double)rom->openingScale, rom->nOpenKrylov, (double)rom->slipScale));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  cone shapes at %g (%s), %" PetscInt_FMT " cone modes; snapshot modes %" PetscInt_FMT " above %g\n", (double)rom->coneShapes, rom->coneTraction ? "normal and traction" : "normal", rom->coneModes, o->nSnapshotModes, (double)o->snapshotTol));
@@ -207,6 +209,7 @@ PetscErrorCode BoltROMSummaryWrite(BoltROM *rom, BoltJSON *j)
   PetscCall(BoltJSONInt(j, "preload_state", rom->preloadState));
   PetscCall(BoltJSONReal(j, "contact_penalty_scale", rom->penaltyScale));
   PetscCall(BoltJSONReal(j, "contact_band_scale", rom->bandScale));
+  PetscCall(BoltJSONInt(j, "trained", rom->opt.trained));
   PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
   PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
   PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));

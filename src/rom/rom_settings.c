@@ -39,6 +39,7 @@ static PetscErrorCode ROMFingerprintShapes(BoltReductionOptions *o, BoltROM *rom
   BoltROMFingerprint *fp = &rom->fingerprint;
 
   PetscFunctionBeginUser;
+  PetscCall(BoltROMFingerprintInt(fp, "trained", o->trained));
   PetscCall(BoltROMFingerprintString(fp, "static_shapes", !staticShapes ? "none" : rom->preloadState ? "preload state" : "static shapes"));
   PetscCall(BoltROMFingerprintInt(fp, "closed_krylov", staticShapes ? o->nClosed : 0));
   PetscCall(BoltROMFingerprintInt(fp, "closed_krylov_keep_active", staticShapes && o->nClosed > 0 ? o->closedKeepActive : 0));
@@ -73,6 +74,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   rom->augment = o->augmentSet ? o->augment : (PetscBool)(BoltContactSetAugmented(contact) && o->nCCM + o->nJIM == 0);
   PetscCheck(o->krylov, o->comm, PETSC_ERR_ARG_WRONGSTATE, "BoltROMBuild needs the Krylov options: configure the reduction with BoltReductionSetFromOptions");
   kry = o->krylov;
+  if (o->trained) o->nCCM = o->nJIM = 0; /* -rom_train reduces no interface: its free pairs are inputs as they are */
   PetscCall(BoltROMFingerprintScene(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, &rom->fingerprint));
   /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
   rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0);
@@ -82,6 +84,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
      Krylov shapes so stiff a penalty locks the reduced interface, and 4e3 E/m (20 x the paper's)
      does best (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
   rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && BoltContactSetAugmented(contact) ? (o->nClosed > 0 ? 1e5 : 4e3) / BoltContactSetPenaltyFactor(contact) : 1.0);
+  if (o->trained) PetscCall(ROMTrainedSettings(rom, loads));
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
   staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0));
   rom->nClosed = staticShapes ? o->nClosed : 0;
@@ -89,7 +92,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
      interface reduction has every node pair's force among its inputs; the stick law's scenes are
      the paper's, whose figures stay as they were) */
   /* ... and none by default with snapshot modes, which carry the openings and slips the FOM made */
-  rom->openingScale = staticShapes ? (o->openingScaleSet ? o->openingScale : (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
+  rom->openingScale = staticShapes && !o->trained ? (o->openingScaleSet ? o->openingScale : (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
   rom->nOpenKrylov  = rom->openingScale > 0 ? o->nOpenKrylov : 0;
   rom->slipScale    = rom->openingScale > 0 && BoltContactSetHasFriction(contact) ? o->slipScale : 0;
   rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) ? o->coneShapes : 0;

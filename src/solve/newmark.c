@@ -287,6 +287,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscCall(BoltDualResetCounters(nm->dual));
   nm->step = 0;
   PetscCall(op->ops.probe(op, nm->q, &nm->probeValue[0]));
+  PetscCall(BoltNewmarkTrackStart(nm));
   if (nm->snapshotEvery > 0) {
     PetscCall(VecCopy(nm->q, nm->snap[0]));
     BoltContactStatePointCodes(op->state, nm->snapCodes);
@@ -324,6 +325,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     nm->dual->time = t;
     PetscCall(BoltDualSolve(nm->dual, nm->rhs, nm->q, n == step0 + 1 ? PETSC_TRUE : PETSC_FALSE, &nout, &nin));
     PetscCall(BoltDualCheckStep(nm->dual, nm->q));
+    BoltNewmarkTrackStep(nm);
     /* a_new = a1 (q - q_old) - a2 v - a3 a;  v_new = v + dt ((1 - gamma) a + gamma a_new) */
     PetscCall(VecWAXPY(nm->work, -1.0, qOld, nm->q));
     PetscCall(VecAXPBYPCZ(nm->work, -a[2], -a[3], a[1], nm->v, nm->acc));
@@ -439,6 +441,7 @@ PetscErrorCode BoltNewmarkDestroy(BoltNewmark **nmp)
   if (nm->snap) PetscCall(VecDestroyVecs(nm->nsteps / nm->snapshotEvery + 1, &nm->snap));
   PetscCall(PetscFree(nm->snapTime));
   PetscCall(PetscFree(nm->snapCodes));
+  PetscCall(PetscFree3(nm->codes0, nm->codesNow, nm->changed));
   PetscCall(PetscFree(*nmp));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,163 @@
+/* The trained ROM (-rom_train): exact where the contact can change, held everywhere else. A FOM
+   run of the scene records the contact points whose state (open, sticking, slipping) left the
+   preloaded one after some step. The node pairs of those points, and of the points that share a
+   contact element with them, get three unit-force inputs each, beside the load and the preload;
+   the Krylov basis is taken about the preloaded joint (K plus the FOM's contact stiffness of its
+   preloaded state), so the first block holds each free pair's response to a force there. Every
+   other closed node pair is tied in the basis (no column opens, shears or presses it): held by a
+   penalty instead, the stiff springs lock the reduced model. The ROM takes the FOM's penalty and
+   band as they are, with no scale of its own; online only the points the FOM changed may change,
+   and the check of every node pair (-contact_check_every) says when a held one would leave its
+   state (docs/reduction.md, "The trained ROM"). */
+#include "private/rom.h"
+
+/* What the FOM's transient hands a trained ROM: per local contact point, whether its state left
+   the preloaded one (BoltNewmarkGetChangedPoints); NULL without a FOM run. Referenced until SetUp
+   returns. */
+PetscErrorCode BoltROMSetTrainingChanges(BoltROM *rom, const PetscBool changed[])
+{
+  PetscFunctionBeginUser;
+  rom->opt.fomChanged = changed;
+  PetscFunctionReturn(0);
+}
+
+PetscBool BoltROMIsTrained(const BoltROM *rom)
+{
+  return rom->opt.trained;
+}
+
+/* The trained ROM's settings, none of them the user's: the penalty law at the FOM's penalty,
+   started from the FOM's preloaded state (its multipliers frozen at the held points); the caller
+   adds the static shapes of that state and no opening shapes (the free pairs' inputs take their
+   place). (Friction is refused before any model runs, by BoltROMCheckOptions: its sticking
+   pairs are springs of the stick stiffness, which ties would make rigid.) */
+PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0, rom->comm, PETSC_ERR_USER_INPUT, "-rom_train starts from the FOM's preloaded joint: give a nonzero -preload_force");
+  PetscCheck(!BoltLoadSetBoltCount(loads), rom->comm, PETSC_ERR_SUP, "-rom_train has one preload: drop -rom_train with -preload_bolts");
+  rom->augment      = PETSC_FALSE;
+  rom->preloadState = PETSC_TRUE;
+  rom->penaltyScale = 1;
+  PetscFunctionReturn(0);
+}
+
+/* K + K_c of the FOM's preloaded state (the FOM's penalties and sticks), a new matrix. */
+static PetscErrorCode ROMPreloadedStiffness(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, Mat *Kheld)
+{
+  BoltOperator *fom;
+  Mat           K, M, Kc;
+  Vec           q;
+  PetscBool     set, sym;
+
+  PetscFunctionBeginUser;
+  PetscCall(BoltAssemblerGetMatrices(asmb, &K, &M));
+  PetscCall(BoltFOMCreate(asmb, contact, loads, PETSC_FALSE, &fom));
+  PetscCall(MatCreateVecs(K, &q, NULL));
+  PetscCall(BoltPreloadStateApply(rom->opt.fomPreload, fom, q));
+  PetscCall(BoltContactStateStiffness(BoltOperatorState(fom), &Kc));
+  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Kheld));
+  PetscCall(MatAXPY(*Kheld, 1.0, Kc, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatIsSymmetricKnown(K, &set, &sym));
+  if (set && sym) PetscCall(MatSetOption(*Kheld, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(VecDestroy(&q));
+  PetscCall(BoltOperatorDestroy(&fom));
+  PetscFunctionReturn(0);
+}
+
+/* The inputs B (three per free node pair, the load, the preload's) and the stiffness the Krylov
+   basis is taken with; marks the points the FOM changed in rom (held online: the others). */
+PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BV *B, Mat *Kheld)
+{
+  BoltReductionOptions *o  = &rom->opt;
+  const PetscInt        np = 4 * BoltContactSetElementCount(contact);
+  PetscInt              npairs;
+  PetscBool            *marked, *free_;
+
+  PetscFunctionBeginUser;
+  PetscCheck(o->fomChanged && o->fomPreload, o->comm, PETSC_ERR_USER_INPUT, "-rom_train learns where the contact changes from the FOM's run of the scene: add -fom true, or give a -rom_file built with -rom_train for this scene");
+  PetscCall(PetscMalloc2(np + 1, &marked, np + 1, &free_));
+  PetscCall(PetscArraycpy(marked, o->fomChanged, np));
+  /* the pairs of the changed points and of the points sharing a contact element with one: tied
+     next to a pair that opens, a neighbour is held where the FOM lets it move a little (paper-step
+     at level 0.5, order 4: e_L2 3.3e-3 tied, 9.2e-5 free; docs/decisions.md) */
+  PetscCall(PetscArraycpy(free_, marked, np));
+  for (PetscInt e = 0; e < np / 4; e++) {
+    PetscBool any = PETSC_FALSE;
+    for (PetscInt q = 0; q < 4; q++) any = (PetscBool)(any || marked[4 * e + q]);
+    if (any)
+      for (PetscInt q = 0; q < 4; q++) free_[4 * e + q] = PETSC_TRUE;
+  }
+  PetscCall(ROMInputMatrix(contact, loads, BoltLoadSetLoad(loads), free_, B, &rom->ninputs, &npairs));
+  PetscCall(PetscFree(rom->marked));
+  PetscCall(PetscMalloc1(np + 1, &rom->marked));
+  PetscCall(PetscArraycpy(rom->marked, marked, np));
+  PetscCall(PetscFree2(marked, free_));
+  rom->nOpeningPairs = npairs;
+  PetscCall(PetscPrintf(o->comm, "ROM: trained on the FOM's run: %" PetscInt_FMT " node pairs changed their contact state there or neighbour one that did, and are its inputs; the other closed pairs are tied\n", npairs));
+  PetscCall(ROMPreloadedStiffness(rom, asmb, contact, loads, Kheld));
+  PetscFunctionReturn(0);
+}
+
+/* Ties the held closed node pairs in every column of V: side b takes side a's displacement (zero
+   where a is clamped), so that no combination of columns opens, shears or presses a held pair.
+   Held by a penalty instead, the stiff springs lock the reduced model. */
+PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V)
+{
+  const PetscInt np = 4 * BoltContactSetElementCount(contact);
+  PetscBool     *held;
+  PetscInt       nheld, *hp, nm, *mp, ncol, rstart, rend, ntie = 0, *from;
+  Vec            v0, seq;
+  VecScatter     sc;
+  IS             isFrom;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(np + 1, &held));
+  for (PetscInt k = 0; k < np; k++) held[k] = (PetscBool)(rom->active0[k] && !rom->marked[k]);
+  PetscCall(BoltNodePairs(contact, held, &nheld, &hp));
+  PetscCall(BoltNodePairs(contact, rom->marked, &nm, &mp));
+  PetscCall(PetscFree(held));
+  /* pairs with a changing point stay free */
+  for (PetscInt i = 0; i < nheld; i++) {
+    PetscBool free_ = PETSC_FALSE;
+    for (PetscInt j = 0; j < nm && !free_; j++) free_ = (PetscBool)(mp[2 * j] == hp[2 * i] && mp[2 * j + 1] == hp[2 * i + 1]);
+    if (!free_ && hp[2 * i + 1] >= 0) { hp[2 * ntie] = hp[2 * i]; hp[2 * ntie + 1] = hp[2 * i + 1]; ntie++; }
+  }
+  PetscCall(PetscMalloc1(3 * ntie + 1, &from));
+  for (PetscInt i = 0; i < ntie; i++)
+    for (PetscInt d = 0; d < 3; d++) from[3 * i + d] = hp[2 * i] >= 0 ? hp[2 * i] + d : hp[2 * i + 1] + d; /* (clamped a: read anything, write 0) */
+  PetscCall(BVGetColumn(V, 0, &v0));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, 3 * ntie, from, PETSC_COPY_VALUES, &isFrom));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * ntie, &seq));
+  PetscCall(VecScatterCreate(v0, isFrom, seq, NULL, &sc));
+  PetscCall(VecGetOwnershipRange(v0, &rstart, &rend));
+  PetscCall(BVRestoreColumn(V, 0, &v0));
+  PetscCall(BVGetSizes(V, NULL, NULL, &ncol));
+  for (PetscInt j = 0; j < ncol; j++) {
+    Vec                v;
+    PetscScalar       *x;
+    const PetscScalar *s;
+    PetscCall(BVGetColumn(V, j, &v));
+    PetscCall(VecScatterBegin(sc, v, seq, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(sc, v, seq, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArray(v, &x));
+    PetscCall(VecGetArrayRead(seq, &s));
+    for (PetscInt i = 0; i < ntie; i++)
+      for (PetscInt d = 0; d < 3; d++) {
+        const PetscInt b = hp[2 * i + 1] + d;
+        if (b >= rstart && b < rend) x[b - rstart] = hp[2 * i] >= 0 ? s[3 * i + d] : 0;
+      }
+    PetscCall(VecRestoreArrayRead(seq, &s));
+    PetscCall(VecRestoreArray(v, &x));
+    PetscCall(BVRestoreColumn(V, j, &v));
+  }
+  PetscCall(BVOrthogonalize(V, NULL));
+  PetscCall(PetscPrintf(rom->comm, "ROM: %" PetscInt_FMT " held node pairs tied in the basis\n", ntie));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&seq));
+  PetscCall(ISDestroy(&isFrom));
+  PetscCall(PetscFree(from));
+  PetscCall(PetscFree(hp));
+  PetscCall(PetscFree(mp));
+  PetscFunctionReturn(0);
+}

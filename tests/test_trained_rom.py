@@ -1,0 +1,79 @@
+"""The trained ROM (-rom_train): inputs at the node pairs whose contact the FOM's run changed (and
+their neighbours), every other closed pair tied. Its reference is the FOM of the same scene; its
+file serves smaller loads; a larger load makes held pairs leave their state, which the check of
+every pair flags. Figures on more scenes and mesh levels: docs/results.md, "The trained ROM".
+
+Run: /usr/bin/python3 -m pytest -q tests/test_trained_rom.py"""
+import h5py
+import numpy as np
+
+from conftest import ROOT, run_boltrom, run_summary
+
+SCENE = ["-options_file", str(ROOT / "inputs" / "paper-step.yaml"), "-ts_end", "0.02", "-rom_train",
+         "-krylov_order", "2", "-contact_check_every", "10"]
+
+
+def test_trained_rom_follows_the_fom_where_the_default_one_drifts(joint_small, tmp_path):
+    """300 N across the plates at the corner of a 2 kN joint opens part of the joint sideways:
+    the default ROM is 1.3 % off there over 0.1 s (docs/results.md, "The ROM where the load opens
+    the joint"); the trained one must stay within the 0.35 % asked of opening scenes."""
+    mesh, _ = joint_small
+    s = run_summary(SCENE + ["-mesh", mesh, "-rom_file", "", "-output", "false", "-preload_force", "2000",
+                             "-load_force", "300", "-load_group", "corner_point", "-load_direction", "1,0,0",
+                             "-probe_component", "0"], tmp_path, ranks=2)
+    rom = s["rom"]
+    print("e_L2", s["errors"]["load_point"]["e_L2"], "dim", rom["dim"], "inputs", rom["inputs"], rom["contact_check"])
+    assert rom["n_ccm"] == 0 and rom["n_jim"] == 0 and rom["held_points"] == 1
+    assert rom["inputs"] > 3 * 10  # at least ten free node pairs: the load opens the joint's side
+    assert s["errors"]["load_point"]["e_L2"] <= 3.5e-3  # measured 1.6e-3
+
+
+def test_trained_file_serves_smaller_loads_the_same_on_1_and_2_ranks(joint_small, tmp_path):
+    """Trained at 300 N, the file runs 100 N without being rebuilt, close to that load's FOM and
+    with no held pair leaving its state; read back by one and by two ranks it gives the same bits."""
+    mesh, _ = joint_small
+    rom_file = tmp_path / "p5k.rom.h5"
+    base = SCENE + ["-mesh", mesh, "-rom_file", rom_file, "-preload_force", "5000", "-output", "false"]
+    built = run_summary(base + ["-load_force", "300"], tmp_path, ranks=2, name="built")
+    assert built["rom"]["source"] == "built"
+    reused = run_summary(base + ["-load_force", "100"], tmp_path, ranks=2, name="reused")
+    print("built", built["errors"]["load_point"]["e_L2"], "reused", reused["errors"]["load_point"]["e_L2"])
+    assert reused["rom"]["source"] == "file" and reused["rom"]["dim"] == built["rom"]["dim"]
+    assert reused["errors"]["load_point"]["e_L2"] <= 1e-3  # measured 1.4e-4
+    assert reused["rom"]["contact_check"]["held_points_leaving"] == 0
+    hist = {}
+    for ranks in (1, 2):
+        d = tmp_path / f"r{ranks}"
+        run_summary(base + ["-load_force", "100", "-fom", "false", "-output", "true", "-output_dir", d], d, ranks=ranks)
+        with h5py.File(d / "paper-step.h5") as f:
+            hist[ranks] = np.array(f["rom/probe"])
+    assert np.abs(hist[1]).max() > 0 and np.array_equal(hist[1], hist[2])
+
+
+def test_trained_rom_pushed_beyond_its_training_is_flagged(joint_small, tmp_path):
+    """Trained at 30 N and run at 300 N, the pairs the larger load opens are held: one warning
+    line names the step, the summary counts them, and the response is visibly off."""
+    mesh, _ = joint_small
+    base = SCENE + ["-mesh", mesh, "-rom_file", tmp_path / "p5k30.rom.h5", "-preload_force", "5000", "-output", "false"]
+    trained = run_summary(base + ["-load_force", "30"], tmp_path, name="trained")
+    assert trained["rom"]["contact_check"]["held_points_leaving"] == 0
+    proc = run_boltrom(base + ["-load_force", "300", "-summary", tmp_path / "pushed.json"])
+    import json
+    pushed = json.loads((tmp_path / "pushed.json").read_text())
+    check = pushed["rom"]["contact_check"]
+    print(check, pushed["errors"]["load_point"]["e_L2"])
+    assert pushed["rom"]["source"] == "file" and check["held_points_leaving"] > 0 and check["held_first_step"] > 0
+    warnings = [l for l in proc.stdout.splitlines() if "held contact points would leave their state" in l]
+    assert len(warnings) == 1 and f"step {check['held_first_step']}," in warnings[0], proc.stdout
+    assert pushed["errors"]["load_point"]["e_L2"] > 5e-3  # measured 2.4e-2 at 0.05 s: the flag matters
+
+
+def test_trained_rom_refuses_friction_and_a_missing_training(joint_small, tmp_path):
+    mesh, _ = joint_small
+    base = ["-options_file", str(ROOT / "inputs" / "paper-step.yaml"), "-mesh", mesh, "-rom_train", "-output", "false"]
+    proc = run_boltrom(base + ["-rom_file", "", "-contact_law", "coulomb", "-contact_friction", "0.1"], check=False)
+    assert proc.returncode != 0 and "FOM Newmark" not in proc.stdout
+    assert "-rom_train ties the pairs it holds" in proc.stderr and "drop -rom_train" in proc.stderr, proc.stderr
+    proc = run_boltrom(base + ["-rom_file", tmp_path / "none.rom.h5", "-fom", "false"], check=False)
+    assert proc.returncode != 0 and "add -fom true" in proc.stderr, proc.stderr
+    assert not (tmp_path / "none.rom.h5").exists()
