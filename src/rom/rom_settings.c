@@ -74,7 +74,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   rom->augment = o->augmentSet ? o->augment : (PetscBool)(BoltContactSetAugmented(contact) && o->nCCM + o->nJIM == 0);
   PetscCheck(o->krylov, o->comm, PETSC_ERR_ARG_WRONGSTATE, "BoltROMBuild needs the Krylov options: configure the reduction with BoltReductionSetFromOptions");
   kry = o->krylov;
-  if (o->trained) o->nCCM = o->nJIM = 0; /* -rom_train reduces no interface: its free pairs are inputs as they are */
+  if (o->trained) o->nCCM = o->nJIM = 0; /* -rom_train reduces no interface: its node pairs are inputs as they are */
   PetscCall(BoltROMFingerprintScene(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, &rom->fingerprint));
   /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
   rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0);

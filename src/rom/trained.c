@@ -1,14 +1,15 @@
 /* The trained ROM (-rom_train): exact where the contact can change, held everywhere else. A FOM
    run of the scene records the contact points whose state (open, sticking, slipping) left the
-   preloaded one after some step. The node pairs of those points, and of the points that share a
-   contact element with them, get three unit-force inputs each, beside the load and the preload;
-   the Krylov basis is taken about the preloaded joint (K plus the FOM's contact stiffness of its
-   preloaded state), so the first block holds each free pair's response to a force there. Every
-   other closed node pair is tied in the basis (no column opens, shears or presses it): held by a
-   penalty instead, the stiff springs lock the reduced model. The ROM takes the FOM's penalty and
-   band as they are, with no scale of its own; online only the points the FOM changed may change,
-   and the check of every node pair (-contact_check_every) says when a held one would leave its
-   state (docs/reduction.md, "The trained ROM"). */
+   preloaded one after some step: their node pairs are the changing pairs. They, and the pairs of
+   the points that share a contact element with a changed one, get three unit-force inputs each,
+   beside the load and the preload; the Krylov basis is taken about the preloaded joint (K plus
+   the FOM's contact stiffness of its preloaded state), so the first block holds the response to
+   a force at each changing pair. Every closed node pair but the changing ones is then tied in the
+   basis (no column opens, shears or presses it): held by a penalty instead, the stiff springs
+   lock the reduced model. The ROM takes the FOM's penalty and band as they are, with no scale of
+   its own; online only the points the FOM changed may change, and the check of every node pair
+   (-contact_check_every) says when a held one would leave its state (docs/reduction.md, "The
+   trained ROM"). */
 #include "private/rom.h"
 
 /* What the FOM's transient hands a trained ROM: per local contact point, whether its state left
@@ -28,8 +29,8 @@ PetscBool BoltROMIsTrained(const BoltROM *rom)
 
 /* The trained ROM's settings, none of them the user's: the penalty law at the FOM's penalty,
    started from the FOM's preloaded state (its multipliers frozen at the held points); the caller
-   adds the static shapes of that state and no opening shapes (the free pairs' inputs take their
-   place). (Friction is refused before any model runs, by BoltROMCheckOptions: its sticking
+   adds the static shapes of that state and no opening shapes (the changing pairs' inputs take
+   their place). (Friction is refused before any model runs, by BoltROMCheckOptions: its sticking
    pairs are springs of the stick stiffness, which ties would make rigid.) */
 PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads)
 {
@@ -65,7 +66,7 @@ static PetscErrorCode ROMPreloadedStiffness(BoltROM *rom, BoltAssembler *asmb, B
   PetscFunctionReturn(0);
 }
 
-/* The inputs B (three per free node pair, the load, the preload's) and the stiffness the Krylov
+/* The inputs B (three per input node pair, the load, the preload's) and the stiffness the Krylov
    basis is taken with; marks the points the FOM changed in rom (held online: the others). */
 PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BV *B, Mat *Kheld)
 {
@@ -78,9 +79,10 @@ PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSe
   PetscCheck(o->fomChanged && o->fomPreload, o->comm, PETSC_ERR_USER_INPUT, "-rom_train learns where the contact changes from the FOM's run of the scene: add -fom true, or give a -rom_file built with -rom_train for this scene");
   PetscCall(PetscMalloc2(np + 1, &marked, np + 1, &free_));
   PetscCall(PetscArraycpy(marked, o->fomChanged, np));
-  /* the pairs of the changed points and of the points sharing a contact element with one: tied
-     next to a pair that opens, a neighbour is held where the FOM lets it move a little (paper-step
-     at level 0.5, order 4: e_L2 3.3e-3 tied, 9.2e-5 free; docs/decisions.md) */
+  /* inputs at the pairs of the changed points and of the points sharing a contact element with
+     one: the neighbours stay tied, but their responses give the basis the deformation next to a
+     pair that opens (paper-step at level 0.5, order 4: e_L2 3.3e-3 without, 9.2e-5 with them;
+     docs/decisions.md) */
   PetscCall(PetscArraycpy(free_, marked, np));
   for (PetscInt e = 0; e < np / 4; e++) {
     PetscBool any = PETSC_FALSE;
@@ -94,7 +96,7 @@ PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSe
   PetscCall(PetscArraycpy(rom->marked, marked, np));
   PetscCall(PetscFree2(marked, free_));
   rom->nOpeningPairs = npairs;
-  PetscCall(PetscPrintf(o->comm, "ROM: trained on the FOM's run: %" PetscInt_FMT " node pairs changed their contact state there or neighbour one that did, and are its inputs; the other closed pairs are tied\n", npairs));
+  PetscCall(PetscPrintf(o->comm, "ROM: trained on the FOM's run: %" PetscInt_FMT " node pairs changed their contact state there or neighbour one that did: they are its inputs; the closed pairs that did not change are tied\n", npairs));
   PetscCall(ROMPreloadedStiffness(rom, asmb, contact, loads, Kheld));
   PetscFunctionReturn(0);
 }
