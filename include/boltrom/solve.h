@@ -103,6 +103,7 @@ PetscErrorCode BoltNewmarkSetPreloadTarget(BoltNewmark *, PetscReal);
 typedef enum { BOLT_HISTORY_TIME, BOLT_HISTORY_PROBE, BOLT_HISTORY_ENERGY, BOLT_HISTORY_SLIPPING, BOLT_HISTORY_DISSIPATED, BOLT_HISTORY_LEDGER, BOLT_HISTORY_PAIR_FORCE } BoltHistory;
 PetscErrorCode BoltNewmarkGetHistory(BoltNewmark *, BoltHistory, PetscInt *, const PetscReal **);
 PetscErrorCode BoltNewmarkGetSnapshots(BoltNewmark *, PetscInt *, Vec **, const PetscReal **, const unsigned char **);
+PetscErrorCode BoltNewmarkStaticStartOptions(PetscBool *, PetscBool *);
 void           BoltNewmarkTrackChanges(BoltNewmark *);
 PetscErrorCode BoltNewmarkGetChangedPoints(BoltNewmark *, const PetscBool **);
 PetscErrorCode BoltNewmarkGetModel(BoltNewmark *, BoltOperator **, BoltDual **, Vec *);

@@ -149,7 +149,7 @@ struct _n_BoltNewmark {
 PetscErrorCode BoltDualCheckStep(BoltDual *, Vec);
 PetscErrorCode BoltDualCheckSummaryWrite(BoltDual *, BoltJSON *);
 
-/* newmark_results.c: the contact points whose state the transient changed (a trained ROM's inputs) */
+/* newmark_track.c: the contact points whose state the transient changed (a trained ROM's inputs) */
 PetscErrorCode BoltNewmarkTrackStart(BoltNewmark *);
 void           BoltNewmarkTrackStep(BoltNewmark *);
 

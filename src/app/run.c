@@ -262,17 +262,15 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   BoltSummary *s = &r->sum;
 
   PetscFunctionBeginUser;
-  /* the FOM's preloaded state and snapshots (for -rom_snapshot_modes), if it ran */
+  /* the FOM's preloaded state, snapshots (for -rom_snapshot_modes) and changed points (for
+     -rom_train), if it ran */
   {
-    PetscInt nsnap = 0;
-    Vec     *snap  = NULL;
+    PetscInt         nsnap   = 0;
+    Vec             *snap    = NULL;
+    const PetscBool *changed = NULL;
     if (s->fomRun) PetscCall(BoltNewmarkGetSnapshots(s->fomRun, &nsnap, &snap, NULL, NULL));
-    PetscCall(BoltROMSetTraining(r->rom, r->fomPreload, nsnap, snap));
-    {
-      const PetscBool *changed = NULL;
-      if (s->fomRun) PetscCall(BoltNewmarkGetChangedPoints(s->fomRun, &changed));
-      PetscCall(BoltROMSetTrainingChanges(r->rom, changed));
-    }
+    if (s->fomRun) PetscCall(BoltNewmarkGetChangedPoints(s->fomRun, &changed));
+    PetscCall(BoltROMSetTraining(r->rom, r->fomPreload, nsnap, snap, changed));
   }
   PetscCall(BoltROMSetUp(r->rom, r->asmb, r->contact, r->loads));
   PetscCall(BoltPreloadStateDestroy(&r->fomPreload));

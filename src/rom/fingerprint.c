@@ -142,14 +142,13 @@ PetscErrorCode BoltROMFingerprintScene(BoltAssembler *asmb, BoltContactSet *c, B
   unsigned long long h;
   char               key[BOLTROM_NAME_LEN + 32], hex[32];
   PetscReal          alpha, beta;
-  PetscBool          calibrate = PETSC_TRUE, withLoad = PETSC_FALSE;
+  PetscBool          calibrate, withLoad;
 
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMesh(asmb, &m));
   PetscCall(BoltAssemblerGetRayleigh(asmb, &alpha, &beta));
   /* read as the FOM's static start reads them (newmark.c), which the file's preloaded state is */
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-preload_calibrate", &calibrate, NULL));
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-static_contact_load", &withLoad, NULL));
+  PetscCall(BoltNewmarkStaticStartOptions(&calibrate, &withLoad));
   fp->n = 0;
   PetscCall(FileHash(BoltMeshComm(m), BoltMeshFileName(m), &h));
   PetscCall(PetscSNPrintf(hex, sizeof(hex), "%016llx", h));

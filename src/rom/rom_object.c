@@ -139,14 +139,16 @@ PetscErrorCode BoltROMCheckOptions(BoltROM *rom, BoltContactSet *contact)
 }
 
 /* What the FOM of this run hands the offline phase, or NULL and 0: its preloaded state (else
-   solved offline) and its displacement snapshots (for -rom_snapshot_modes). Referenced until
-   SetUp returns. */
-PetscErrorCode BoltROMSetTraining(BoltROM *rom, const BoltPreloadState *fomPreload, PetscInt nsnap, Vec snap[])
+   solved offline), its displacement snapshots (for -rom_snapshot_modes) and, per local contact
+   point, whether its state left the preloaded one (for -rom_train). Referenced until SetUp
+   returns. */
+PetscErrorCode BoltROMSetTraining(BoltROM *rom, const BoltPreloadState *fomPreload, PetscInt nsnap, Vec snap[], const PetscBool changed[])
 {
   PetscFunctionBeginUser;
   rom->opt.fomPreload    = fomPreload;
   rom->opt.nFomSnapshots = nsnap;
   rom->opt.fomSnapshots  = snap;
+  rom->opt.fomChanged    = changed;
   PetscFunctionReturn(0);
 }
 
@@ -163,7 +165,7 @@ PetscErrorCode BoltROMSetUp(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *c
   if (rom->opt.file[0]) PetscCall(ROMReuseFile(rom, contact, loads, t0, &reused));
   if (!reused) PetscCall(ROMBuild(rom, asmb, contact, loads, t0));
   PetscCall(ROMResolveOnline(rom, contact));
-  PetscCall(BoltROMSetTraining(rom, NULL, 0, NULL)); /* the caller frees them */
+  PetscCall(BoltROMSetTraining(rom, NULL, 0, NULL, NULL)); /* the caller frees them */
   if (rom->view) PetscCall(BoltROMView(rom, PETSC_VIEWER_STDOUT_(rom->comm)));
   PetscFunctionReturn(0);
 }

@@ -110,12 +110,11 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
        operator of its own whose state is then handed over as the FOM's would be (a state that
        went through the solve keeps the friction's working data, and the shapes below then saw
        another joint: 53 slipping node pairs marked instead of 147 on a 100 N sine along x) */
-    PetscBool         calibrate = PETSC_TRUE, withLoad = PETSC_FALSE;
+    PetscBool         calibrate, withLoad;
     BoltOperator     *fom;
     BoltDual         *fomDual;
     BoltPreloadState *st;
-    PetscCall(PetscOptionsGetBool(NULL, NULL, "-preload_calibrate", &calibrate, NULL));
-    PetscCall(PetscOptionsGetBool(NULL, NULL, "-static_contact_load", &withLoad, NULL));
+    PetscCall(BoltNewmarkStaticStartOptions(&calibrate, &withLoad));
     PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &fom));
     PetscCall(BoltOperatorCopyLoads(fom, NULL, BoltOperatorPreloadVec(op)));
     PetscCall(BoltDualCreate(fom, &fomDual));

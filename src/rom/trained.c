@@ -12,16 +12,6 @@
    trained ROM"). */
 #include "private/rom.h"
 
-/* What the FOM's transient hands a trained ROM: per local contact point, whether its state left
-   the preloaded one (BoltNewmarkGetChangedPoints); NULL without a FOM run. Referenced until SetUp
-   returns. */
-PetscErrorCode BoltROMSetTrainingChanges(BoltROM *rom, const PetscBool changed[])
-{
-  PetscFunctionBeginUser;
-  rom->opt.fomChanged = changed;
-  PetscFunctionReturn(0);
-}
-
 PetscBool BoltROMIsTrained(const BoltROM *rom)
 {
   return rom->opt.trained;
@@ -73,28 +63,27 @@ PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSe
   BoltReductionOptions *o  = &rom->opt;
   const PetscInt        np = 4 * BoltContactSetElementCount(contact);
   PetscInt              npairs;
-  PetscBool            *marked, *free_;
+  PetscBool            *free_;
 
   PetscFunctionBeginUser;
   PetscCheck(o->fomChanged && o->fomPreload, o->comm, PETSC_ERR_USER_INPUT, "-rom_train learns where the contact changes from the FOM's run of the scene: add -fom true, or give a -rom_file built with -rom_train for this scene");
-  PetscCall(PetscMalloc2(np + 1, &marked, np + 1, &free_));
-  PetscCall(PetscArraycpy(marked, o->fomChanged, np));
+  PetscCall(PetscFree(rom->marked));
+  PetscCall(PetscMalloc1(np + 1, &rom->marked));
+  PetscCall(PetscMalloc1(np + 1, &free_));
+  PetscCall(PetscArraycpy(rom->marked, o->fomChanged, np));
   /* inputs at the pairs of the changed points and of the points sharing a contact element with
      one: the neighbours stay tied, but their responses give the basis the deformation next to a
      pair that opens (paper-step at level 0.5, order 4: e_L2 3.3e-3 without, 9.2e-5 with them;
      docs/decisions.md) */
-  PetscCall(PetscArraycpy(free_, marked, np));
+  PetscCall(PetscArraycpy(free_, rom->marked, np));
   for (PetscInt e = 0; e < np / 4; e++) {
     PetscBool any = PETSC_FALSE;
-    for (PetscInt q = 0; q < 4; q++) any = (PetscBool)(any || marked[4 * e + q]);
+    for (PetscInt q = 0; q < 4; q++) any = (PetscBool)(any || rom->marked[4 * e + q]);
     if (any)
       for (PetscInt q = 0; q < 4; q++) free_[4 * e + q] = PETSC_TRUE;
   }
   PetscCall(ROMInputMatrix(contact, loads, BoltLoadSetLoad(loads), free_, B, &rom->ninputs, &npairs));
-  PetscCall(PetscFree(rom->marked));
-  PetscCall(PetscMalloc1(np + 1, &rom->marked));
-  PetscCall(PetscArraycpy(rom->marked, marked, np));
-  PetscCall(PetscFree2(marked, free_));
+  PetscCall(PetscFree(free_));
   rom->nOpeningPairs = npairs;
   PetscCall(PetscPrintf(o->comm, "ROM: trained on the FOM's run: %" PetscInt_FMT " node pairs changed their contact state there or neighbour one that did: they are its inputs; the closed pairs that did not change are tied\n", npairs));
   PetscCall(ROMPreloadedStiffness(rom, asmb, contact, loads, Kheld));

@@ -3,6 +3,27 @@
    a solve of the dual contact loop (BoltDual, dual.c) on the effective system. */
 #include "private/solve.h"
 
+/* The static start's defaults: the preload calibrated to its clamp force, the load not carried. */
+static PetscErrorCode BoltNewmarkStaticStartDefaults(PetscBool *calibrate, PetscBool *withLoad)
+{
+  PetscFunctionBeginUser;
+  *calibrate = PETSC_TRUE;
+  *withLoad  = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The static start's two scene options (-preload_calibrate, -static_contact_load) as a time
+   integrator of this run reads them: for the ROM's offline static solves and its file's
+   fingerprint, which run without one. */
+PetscErrorCode BoltNewmarkStaticStartOptions(PetscBool *calibrate, PetscBool *withLoad)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltNewmarkStaticStartDefaults(calibrate, withLoad));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-preload_calibrate", calibrate, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-static_contact_load", withLoad, NULL));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
 {
   BoltNewmark *nm;
@@ -17,7 +38,7 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
   nm->history        = BOLT_LOAD_STEP;
   nm->frequency      = 50.0;
   nm->sweepStart     = 0.1;
-  nm->calibratePreload = PETSC_TRUE;
+  PetscCall(BoltNewmarkStaticStartDefaults(&nm->calibratePreload, &nm->staticWithLoad));
   nm->preloadScale   = 1.0;
   PetscCall(PetscStrncpy(nm->checkpointBase, "output/joint", sizeof(nm->checkpointBase)));
   PetscCall(BoltDualCreate(op, &nm->dual));
