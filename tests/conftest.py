@@ -19,12 +19,12 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
            OPENBLAS_NUM_THREADS="1", OMPI_MCA_rmaps_base_oversubscribe="1")
 
 
-def run_boltrom(args, ranks=1, check=True, cwd=None):
+def run_boltrom(args, ranks=1, check=True, cwd=None, timeout=900):
     """Runs bin/boltrom on `ranks` MPI ranks; returns the CompletedProcess."""
     # one rank runs as an MPI singleton: no launcher, so stderr holds only boltrom's own lines
     launcher = ["mpiexec", "-n", str(ranks)] if ranks > 1 else []
     cmd = launcher + [str(BOLTROM)] + [str(a) for a in args]
-    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=cwd or ROOT, timeout=900)
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=cwd or ROOT, timeout=timeout)
     if check and proc.returncode != 0:
         raise AssertionError(f"{' '.join(cmd)} failed ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}")
     return proc

@@ -192,6 +192,29 @@ def test_killed_rom_build_leaves_the_previous_rom_file(joint_small, tmp_path):
     assert f"ROM: reusing {rom} (dimension" in p.stdout
 
 
+def test_write_after_a_killed_write_does_not_wait(joint_small, tmp_path):
+    """A run killed while it wrote rom.h5.tmp may leave Open MPI's semaphore for that file name
+    taken (its shared-memory file pointer names it after the base name alone), and a later
+    run writing the same name waited on it for ever. With such a semaphore planted, a ROM build on
+    2 ranks into a file of that name finishes (in about 10 s) and its file is read back."""
+    import ctypes
+    mesh, _ = joint_small
+    rom = tmp_path / "stale-rom.h5"
+    name = f"/OMPIO_{rom.name}.tmp".encode()
+    libc = ctypes.CDLL(None, use_errno=True)
+    libc.sem_open.restype = ctypes.c_void_p
+    sem = libc.sem_open(name, ctypes.c_int(0o100), ctypes.c_int(0o644), ctypes.c_uint(0))  # O_CREAT, taken
+    assert sem not in (None, ctypes.c_void_p(-1).value), ctypes.get_errno()
+    libc.sem_close(ctypes.c_void_p(sem))
+    try:
+        common = ["-mesh", mesh, "-fom", "false", "-ts_end", "1e-4", "-rom_file", rom, "-output", "false"]
+        run_boltrom(SCENE + common, ranks=2, timeout=300)
+        p = run_boltrom(SCENE + common)
+        assert f"ROM: reusing {rom} (dimension" in p.stdout
+    finally:
+        libc.sem_unlink(name)
+
+
 def one_line_error(proc):
     lines = [l for l in proc.stderr.splitlines() if l.strip()]
     assert proc.returncode != 0

@@ -152,6 +152,12 @@ int main(int argc, char **argv)
     else args[nargs++] = argv[i];
   }
   args[nargs] = NULL;
+  /* Open MPI's shared-memory file-pointer component names its semaphore after the file's base
+     name only: a run killed while it wrote rom.h5.tmp left that semaphore taken, and every later
+     run writing a file of that name waited on it for ever. The files here use no shared file
+     pointer; the component that locks with fcntl is released when its process dies. A user's
+     own OMPI_MCA_sharedfp wins. */
+  if (!getenv("OMPI_MCA_sharedfp") || !getenv("OMPI_MCA_sharedfp")[0]) setenv("OMPI_MCA_sharedfp", "^sm", 1);
   PetscCall(SlepcInitialize(&nargs, &args, NULL, help));
   if (wantHelp) {
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s", help));
