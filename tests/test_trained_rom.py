@@ -68,6 +68,23 @@ def test_trained_rom_pushed_beyond_its_training_is_flagged(joint_small, tmp_path
     assert pushed["errors"]["load_point"]["e_L2"] > 5e-3  # measured 2.4e-2 at 0.05 s: the flag matters
 
 
+def test_tied_pairs_that_would_open_are_seen_the_same_on_1_and_2_ranks(joint_small, tmp_path):
+    """A tied pair's gap cannot open, so its traction comes from the full residual at its DOFs.
+    Trained at 30 N down, its tied pairs stay pressed (no tension, nothing flagged); run from the
+    file at 1 kN up, the pairs the FOM opens on the far side are tied in the ROM and show tension
+    (measured 3.2e8 Pa; read from their frozen gaps they showed 7 Pa), the same on 2 ranks."""
+    mesh, _ = joint_small
+    base = SCENE + ["-mesh", mesh, "-rom_file", tmp_path / "p5k30.rom.h5", "-preload_force", "5000", "-output", "false"]
+    trained = run_summary(base + ["-load_force", "30"], tmp_path, name="trained")["rom"]["contact_check"]
+    assert trained["tension_max_pa"] == 0 and trained["held_points_leaving"] == 0
+    up = {r: run_summary(base + ["-load_force", "-1000", "-fom", "false"], tmp_path, ranks=r, name=f"up{r}")["rom"]["contact_check"]
+          for r in (1, 2)}
+    print(up)
+    assert up[1]["tension_max_pa"] > 1e6 and up[1]["held_points_leaving"] > 0
+    assert abs(up[2]["tension_max_pa"] - up[1]["tension_max_pa"]) <= 1e-8 * up[1]["tension_max_pa"]
+    assert up[2]["held_points_leaving"] == up[1]["held_points_leaving"]
+
+
 def test_trained_rom_refuses_friction_and_a_missing_training(joint_small, tmp_path):
     mesh, _ = joint_small
     base = ["-options_file", str(ROOT / "inputs" / "paper-step.yaml"), "-mesh", mesh, "-rom_train", "-output", "false"]

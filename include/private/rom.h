@@ -35,6 +35,11 @@ PetscInt       ROMPreloadInputs(BoltLoadSet *loads);
 PetscErrorCode ROMInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout, const PetscBool select[], BV *B, PetscInt *ncols, PetscInt *npairsOut);
 PetscErrorCode ROMInsertPreloadInputs(BV B, PetscInt col, BoltLoadSet *loads);
 PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V);
+PetscErrorCode ROMTiedPairs(BoltROM *rom, BoltContactSet *contact, PetscInt *ntie, PetscInt **pairs, PetscReal **normals);
+PetscErrorCode ROMTieCheckSetUp(BoltROM *rom, BoltAssembler *asmb, BoltLoadSet *loads, BV V);
+PetscErrorCode ROMTieCheckDestroy(BoltROM *rom);
+PetscErrorCode ROMHeldTractions(BoltOperator *op, Vec q, Vec v, Vec a, PetscReal amp, const PetscBool **tied, const PetscReal **t);
+PetscErrorCode ROMGetBasis(BoltROM *rom, BV *V);
 PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads);
 PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BV *B, Mat *Kheld);
 PetscErrorCode ROMOnlineDestroy(BoltROM *rom);
@@ -210,6 +215,9 @@ struct _n_BoltROM {
   PetscReal      *fParts;        /* 2n per owned pair: its term's parts in fAcc */
   PetscReal       fGridBound;    /* the bound the sums' grid was set for (kept by checkpoints) */
   PetscBool       fGridValid, fPartsValid;
+  /* a trained ROM's check of its tied pairs (tie_check.c): the rows of K V and M V, of the load
+     and of the preload at the tied pairs' DOFs this rank owns, for the ties' forces */
+  struct BoltROMTieCheck_s *tie;
 };
 
 #endif

@@ -10,6 +10,7 @@ struct _n_BoltOperatorOps {
   PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);               /* K_c of the active set */
   /* optional, else from contactDisplacements and the state's own computation: */
   PetscErrorCode (*contactGaps)(BoltOperator *, Vec, PetscReal[]);         /* q -> the gaps at the local contact points */
+  PetscErrorCode (*heldTractions)(BoltOperator *, Vec, Vec, Vec, PetscReal, const PetscBool **, const PetscReal **); /* q, v, a, the load's amplitude -> the tractions of the points its basis ties (NULL: none), for the check */
   PetscErrorCode (*openTraction)(BoltOperator *, PetscReal[]);             /* the traction of the opening test (BoltContactStateOpenTraction) */
   PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
   /* checkpoints: the model's vectors (named datasets) and whatever else its state holds */
@@ -146,7 +147,7 @@ struct _n_BoltNewmark {
 };
 
 /* dual_check.c: every node pair checked after each converged transient step */
-PetscErrorCode BoltDualCheckStep(BoltDual *, Vec);
+PetscErrorCode BoltDualCheckStep(BoltDual *, Vec, Vec, Vec, PetscReal);
 PetscErrorCode BoltDualCheckSummaryWrite(BoltDual *, BoltJSON *);
 
 /* newmark_track.c: the contact points whose state the transient changed (a trained ROM's inputs) */

@@ -9,8 +9,9 @@
    largest excess of a closed point's tangential traction over the Coulomb cone, relative to
    mu |t_N| (0 without friction); *leaving: the held points (the state's mayChange is false) whose
    state the law would change: an open one that penetrates beyond the activation gap, a closed one
-   in tension beyond its pair's band. Collective. */
-PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[], PetscReal worst[3], PetscInt *leaving)
+   in tension beyond its pair's band. tied (or NULL) marks the points whose traction is given in
+   tTied (3 each), a reduced model's ties': their gaps cannot show it. Collective. */
+PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[], const PetscBool tied[], const PetscReal tTied[], PetscReal worst[3], PetscInt *leaving)
 {
   BoltContactSet *c   = s->set;
   const PetscInt  ngp = 4 * c->nelem;
@@ -25,6 +26,7 @@ PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[]
     const PetscInt pair = c->elem[gp / 4].pair;
     PetscReal     *tp   = &t[3 * gp];
     if (!s->active[gp]) tp[0] = tp[1] = tp[2] = 0;
+    else if (tied && tied[gp]) PetscCall(PetscArraycpy(tp, &tTied[3 * gp], 3));
     else if (BoltContactStateLambdaIsTraction(s)) PetscCall(PetscArraycpy(tp, &s->lambda[3 * gp], 3));
     else s->law->ops.traction(&s->lambda[3 * gp], &g[3 * gp], &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), tp);
   }

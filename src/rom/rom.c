@@ -262,6 +262,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(ROMSetUpGapRows(rom, BoltContactStateMayChange(BoltOperatorState(op))));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_GAPS, (void (*)(void))ROMContactGaps));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_OPEN_TRACTION, (void (*)(void))ROMOpenTraction));
+  if (rom->tie) PetscCall(BoltOperatorSetOperation(op, BOLT_OP_HELD_TRACTIONS, (void (*)(void))ROMHeldTractions));
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
   PetscCall(ROMSetUpPairForces(rom, BoltContactStateMayChange(BoltOperatorState(op))));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));

@@ -9,7 +9,8 @@
 
 static const char boltROMBasisKey[] = "BoltROMBasis";
 
-static PetscErrorCode BoltROMGetBasis(BoltROM *rom, BV *V)
+/* The whole basis, if the ROM keeps it (else NULL). */
+PetscErrorCode ROMGetBasis(BoltROM *rom, BV *V)
 {
   PetscFunctionBeginUser;
   *V = NULL;
@@ -32,7 +33,7 @@ PetscErrorCode BoltROMHasBasis(BoltROM *rom, PetscBool *has)
   BV V;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltROMGetBasis(rom, &V));
+  PetscCall(ROMGetBasis(rom, &V));
   *has = V ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
@@ -45,7 +46,7 @@ PetscErrorCode BoltROMExpand(BoltROM *rom, Vec q, Vec u)
   PetscInt           nq;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltROMGetBasis(rom, &V));
+  PetscCall(ROMGetBasis(rom, &V));
   PetscCheck(V, rom->comm, PETSC_ERR_ORDER, "The ROM has no whole basis to expand its coordinates with");
   PetscCall(VecGetLocalSize(q, &nq));
   PetscCheck(nq == rom->n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "ROM coordinates of size %" PetscInt_FMT ", the ROM has %" PetscInt_FMT, nq, rom->n);

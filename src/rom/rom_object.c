@@ -165,6 +165,15 @@ PetscErrorCode BoltROMSetUp(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *c
   if (rom->opt.file[0]) PetscCall(ROMReuseFile(rom, contact, loads, t0, &reused));
   if (!reused) PetscCall(ROMBuild(rom, asmb, contact, loads, t0));
   PetscCall(ROMResolveOnline(rom, contact));
+  if (rom->opt.trained) { /* its ties' forces, for the check of every node pair */
+    BoltMesh *m;
+    BV        V;
+    PetscBool whole;
+    PetscCall(BoltAssemblerGetMesh(asmb, &m));
+    PetscCall(BoltROMBasisEnsure(rom, m, BoltLoadSetLoad(loads), &whole));
+    PetscCall(ROMGetBasis(rom, &V));
+    if (V) PetscCall(ROMTieCheckSetUp(rom, asmb, loads, V));
+  }
   PetscCall(BoltROMSetTraining(rom, NULL, 0, NULL, NULL)); /* the caller frees them */
   if (rom->view) PetscCall(BoltROMView(rom, PETSC_VIEWER_STDOUT_(rom->comm)));
   PetscFunctionReturn(0);
@@ -266,6 +275,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **romp)
   PetscCall(PetscFree(rom->rigidr));
   PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0));
   PetscCall(PetscFree(rom->marked));
+  PetscCall(ROMTieCheckDestroy(rom));
   PetscCall(BoltKrylovDestroy(&rom->opt.krylov));
   PetscCall(PetscFree(*romp));
   PetscFunctionReturn(0);

@@ -90,30 +90,51 @@ PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSe
   PetscFunctionReturn(0);
 }
 
+/* The tied node pairs, the same list on every rank: the closed pairs of the preloaded state with
+   no point the FOM changed, side b not clamped; as (a dof, b dof) of their x component (a -1
+   where clamped), with their normals (3 each) if asked. */
+PetscErrorCode ROMTiedPairs(BoltROM *rom, BoltContactSet *contact, PetscInt *ntie, PetscInt **pairs, PetscReal **normals)
+{
+  const PetscInt np = 4 * BoltContactSetElementCount(contact);
+  PetscBool     *held;
+  PetscInt       nheld, *hp, nm, *mp, k = 0;
+  PetscReal     *hn;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(np + 1, &held));
+  for (PetscInt i = 0; i < np; i++) held[i] = (PetscBool)(rom->active0[i] && !rom->marked[i]);
+  PetscCall(BoltNodePairsDirected(contact, held, 1, BoltContactSetNormals(contact), &nheld, &hp, &hn));
+  PetscCall(BoltNodePairs(contact, rom->marked, &nm, &mp));
+  PetscCall(PetscFree(held));
+  for (PetscInt i = 0; i < nheld; i++) { /* pairs with a changing point stay free */
+    PetscBool free_ = PETSC_FALSE;
+    for (PetscInt j = 0; j < nm && !free_; j++) free_ = (PetscBool)(mp[2 * j] == hp[2 * i] && mp[2 * j + 1] == hp[2 * i + 1]);
+    if (free_ || hp[2 * i + 1] < 0) continue;
+    hp[2 * k]     = hp[2 * i];
+    hp[2 * k + 1] = hp[2 * i + 1];
+    for (PetscInt d = 0; d < 3; d++) hn[3 * k + d] = hn[3 * i + d];
+    k++;
+  }
+  PetscCall(PetscFree(mp));
+  *ntie  = k;
+  *pairs = hp;
+  if (normals) *normals = hn;
+  else PetscCall(PetscFree(hn));
+  PetscFunctionReturn(0);
+}
+
 /* Ties the held closed node pairs in every column of V: side b takes side a's displacement (zero
    where a is clamped), so that no combination of columns opens, shears or presses a held pair.
    Held by a penalty instead, the stiff springs lock the reduced model. */
 PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V)
 {
-  const PetscInt np = 4 * BoltContactSetElementCount(contact);
-  PetscBool     *held;
-  PetscInt       nheld, *hp, nm, *mp, ncol, rstart, rend, ntie = 0, *from;
-  Vec            v0, seq;
-  VecScatter     sc;
-  IS             isFrom;
+  PetscInt   ntie, *hp, ncol, rstart, rend, *from;
+  Vec        v0, seq;
+  VecScatter sc;
+  IS         isFrom;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(np + 1, &held));
-  for (PetscInt k = 0; k < np; k++) held[k] = (PetscBool)(rom->active0[k] && !rom->marked[k]);
-  PetscCall(BoltNodePairs(contact, held, &nheld, &hp));
-  PetscCall(BoltNodePairs(contact, rom->marked, &nm, &mp));
-  PetscCall(PetscFree(held));
-  /* pairs with a changing point stay free */
-  for (PetscInt i = 0; i < nheld; i++) {
-    PetscBool free_ = PETSC_FALSE;
-    for (PetscInt j = 0; j < nm && !free_; j++) free_ = (PetscBool)(mp[2 * j] == hp[2 * i] && mp[2 * j + 1] == hp[2 * i + 1]);
-    if (!free_ && hp[2 * i + 1] >= 0) { hp[2 * ntie] = hp[2 * i]; hp[2 * ntie + 1] = hp[2 * i + 1]; ntie++; }
-  }
+  PetscCall(ROMTiedPairs(rom, contact, &ntie, &hp, NULL));
   PetscCall(PetscMalloc1(3 * ntie + 1, &from));
   for (PetscInt i = 0; i < ntie; i++)
     for (PetscInt d = 0; d < 3; d++) from[3 * i + d] = hp[2 * i] >= 0 ? hp[2 * i] + d : hp[2 * i + 1] + d; /* (clamped a: read anything, write 0) */
@@ -149,6 +170,5 @@ PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V)
   PetscCall(ISDestroy(&isFrom));
   PetscCall(PetscFree(from));
   PetscCall(PetscFree(hp));
-  PetscCall(PetscFree(mp));
   PetscFunctionReturn(0);
 }

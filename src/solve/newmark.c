@@ -345,7 +345,6 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     nm->dual->step = n;
     nm->dual->time = t;
     PetscCall(BoltDualSolve(nm->dual, nm->rhs, nm->q, n == step0 + 1 ? PETSC_TRUE : PETSC_FALSE, &nout, &nin));
-    PetscCall(BoltDualCheckStep(nm->dual, nm->q));
     BoltNewmarkTrackStep(nm);
     /* a_new = a1 (q - q_old) - a2 v - a3 a;  v_new = v + dt ((1 - gamma) a + gamma a_new) */
     PetscCall(VecWAXPY(nm->work, -1.0, qOld, nm->q));
@@ -356,6 +355,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
       PetscCall(VecZeroEntries(nm->v));
       PetscCall(VecZeroEntries(nm->acc));
     }
+    PetscCall(BoltDualCheckStep(nm->dual, nm->q, nm->v, nm->acc, amp));
     PetscCall(BoltNewmarkProductsStep(nm));
     nm->probeTime[n] = t;
     if (nm->snapshotEvery > 0 && n % nm->snapshotEvery == 0) {

@@ -98,6 +98,7 @@ PetscErrorCode BoltOperatorSetOperation(BoltOperator *op, BoltOperatorOp which, 
   case BOLT_OP_VIEW: op->ops.view = (PetscErrorCode(*)(BoltOperator *, PetscViewer))fn; break;
   case BOLT_OP_DESTROY: op->ops.destroy = (PetscErrorCode(*)(BoltOperator *))fn; break;
   case BOLT_OP_FACTOR: op->ops.factor = (PetscErrorCode(*)(BoltOperator *, BoltDual *))fn; break;
+  case BOLT_OP_HELD_TRACTIONS: op->ops.heldTractions = (PetscErrorCode(*)(BoltOperator *, Vec, Vec, Vec, PetscReal, const PetscBool **, const PetscReal **))fn; break;
   case BOLT_OP_SOLVE: op->ops.solve = (PetscErrorCode(*)(BoltOperator *, BoltDual *, Vec, Vec))fn; break;
   default: SETERRQ(op->comm, PETSC_ERR_ARG_OUTOFRANGE, "Unknown operator operation %d", (int)which);
   }
