@@ -9,7 +9,7 @@
    largest excess of a closed point's tangential traction over the Coulomb cone, relative to
    mu |t_N| (0 without friction); *leaving: the held points (the state's mayChange is false) whose
    state the law would change: an open one that penetrates beyond the activation gap, a closed one
-   in tension beyond its pair's band. tied (or NULL) marks the points whose traction is given in
+   in tension beyond its pair's band, a sticking one outside its Coulomb cone. tied (or NULL) marks the points whose traction is given in
    tTied (3 each), a reduced model's ties': their gaps cannot show it. Collective. */
 PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[], const PetscBool tied[], const PetscReal tTied[], PetscReal worst[3], PetscInt *leaving)
 {
@@ -45,7 +45,11 @@ PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[]
       loc[1]              = PetscMax(loc[1], tn[gp]);
       if (held && tn[gp] > s->bandTraction[pair]) nloc++;
       for (PetscInt k = 0; k < 3; k++) tt += PetscSqr(tp[k] - tnp * n[k]);
-      if (BoltContactStateHasFriction(s) && tnp < 0 && c->friction[pair] > 0) loc[2] = PetscMax(loc[2], PetscSqrtReal(tt) / (c->friction[pair] * -tnp) - 1);
+      if (BoltContactStateHasFriction(s) && tnp < 0 && c->friction[pair] > 0) {
+        const PetscReal excess = PetscSqrtReal(tt) / (c->friction[pair] * -tnp) - 1;
+        loc[2] = PetscMax(loc[2], excess);
+        if (held && excess > PETSC_SQRT_MACHINE_EPSILON) nloc++; /* a held stick that would slip */
+      }
     }
   }
   PetscCall(PetscFree3(g, t, tn));

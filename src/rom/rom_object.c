@@ -47,7 +47,7 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
     /* it replaces a -rom_file: with none it would be ignored without a word */
     PetscCheck(!set || o->file[0], comm, PETSC_ERR_USER_INPUT, "-rom_rebuild %s replaces a -rom_file that does not match the scene, but -rom_file is empty: give -rom_file %s to build the ROM into that file", o->rebuildFile, o->rebuildFile);
   }
-  PetscCall(PetscOptionsBool("-rom_train", "Build the ROM from this run's FOM: inputs where its contact changed state, the other closed pairs held (strict law; needs -fom true)", NULL, o->trained, &o->trained, NULL));
+  PetscCall(PetscOptionsBool("-rom_train", "Build the ROM from this run's FOM: inputs where its contact changed state, the other closed pairs held (needs -fom true)", NULL, o->trained, &o->trained, NULL));
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   o->augment = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
@@ -133,7 +133,6 @@ PetscErrorCode BoltROMCheckOptions(BoltROM *rom, BoltContactSet *contact)
 
   PetscFunctionBeginUser;
   PetscCheck(o->coneShapes == 0 || BoltContactSetHasFriction(contact), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes needs a frictional law: add -contact_law coulomb (the %s law has no cone)", BoltContactSetLawType(contact));
-  PetscCheck(!o->trained || !BoltContactSetHasFriction(contact), rom->comm, PETSC_ERR_SUP, "-rom_train ties the pairs it holds, which friction's sticking springs are not: drop -rom_train under -contact_law %s", BoltContactSetLawType(contact));
   PetscCheck(o->coneModes == 0 || (o->coneShapes > 0 && o->nSnapshotModes > 0), rom->comm, PETSC_ERR_USER_INPUT, "-rom_cone_modes compresses cone shapes with a training run's snapshots: add -rom_cone_shapes r and -rom_snapshot_modes k");
   PetscFunctionReturn(0);
 }

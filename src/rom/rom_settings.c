@@ -95,7 +95,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   rom->openingScale = staticShapes && !o->trained ? (o->openingScaleSet ? o->openingScale : (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
   rom->nOpenKrylov  = rom->openingScale > 0 ? o->nOpenKrylov : 0;
   rom->slipScale    = rom->openingScale > 0 && BoltContactSetHasFriction(contact) ? o->slipScale : 0;
-  rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) ? o->coneShapes : 0;
+  rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) && !o->trained ? o->coneShapes : 0;
   rom->coneTraction = o->coneTraction;
   rom->coneModes    = rom->coneShapes > 0 ? o->coneModes : 0;
   staticPenaltyScale = o->staticPenaltyScale > 0 ? o->staticPenaltyScale : PetscMax(1.0, 2e6 / BoltContactSetPenaltyFactor(contact)); /* 2e6 E/m */

@@ -5,8 +5,9 @@
    beside the load and the preload; the Krylov basis is taken about the preloaded joint (K plus
    the FOM's contact stiffness of its preloaded state), so the first block holds the response to
    a force at each changing pair. Every closed node pair but the changing ones is then tied in the
-   basis (no column opens, shears or presses it): held by a penalty instead, the stiff springs
-   lock the reduced model. The ROM takes the FOM's penalty and band as they are, with no scale of
+   basis (no column opens, shears or presses it; under friction only its normal, so that a held
+   stick keeps its spring): held by a penalty instead, the stiff springs lock the reduced model;
+   a pair that slips anywhere in the training run changes. The ROM takes the FOM's penalty and band as they are, with no scale of
    its own; online only the points the FOM changed may change, and the check of every node pair
    (-contact_check_every) says when a held one would leave its state (docs/reduction.md, "The
    trained ROM"). */
@@ -20,8 +21,7 @@ PetscBool BoltROMIsTrained(const BoltROM *rom)
 /* The trained ROM's settings, none of them the user's: the penalty law at the FOM's penalty,
    started from the FOM's preloaded state (its multipliers frozen at the held points); the caller
    adds the static shapes of that state and no opening shapes (the changing pairs' inputs take
-   their place). (Friction is refused before any model runs, by BoltROMCheckOptions: its sticking
-   pairs are springs of the stick stiffness, which ties would make rigid.) */
+   their place), and no cone shapes under friction (the changing pairs include the slipping ones). */
 PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads)
 {
   PetscFunctionBeginUser;
@@ -124,17 +124,20 @@ PetscErrorCode ROMTiedPairs(BoltROM *rom, BoltContactSet *contact, PetscInt *nti
 }
 
 /* Ties the held closed node pairs in every column of V: side b takes side a's displacement (zero
-   where a is clamped), so that no combination of columns opens, shears or presses a held pair.
+   where a is clamped), so that no combination of columns opens, shears or presses a held pair;
+   under friction b loses only its normal motion relative to a (a held stick keeps its spring).
    Held by a penalty instead, the stiff springs lock the reduced model. */
 PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V)
 {
+  const PetscBool normalOnly = BoltContactSetHasFriction(contact);
   PetscInt   ntie, *hp, ncol, rstart, rend, *from;
+  PetscReal *hn;
   Vec        v0, seq;
   VecScatter sc;
   IS         isFrom;
 
   PetscFunctionBeginUser;
-  PetscCall(ROMTiedPairs(rom, contact, &ntie, &hp, NULL));
+  PetscCall(ROMTiedPairs(rom, contact, &ntie, &hp, &hn));
   PetscCall(PetscMalloc1(3 * ntie + 1, &from));
   for (PetscInt i = 0; i < ntie; i++)
     for (PetscInt d = 0; d < 3; d++) from[3 * i + d] = hp[2 * i] >= 0 ? hp[2 * i] + d : hp[2 * i + 1] + d; /* (clamped a: read anything, write 0) */
@@ -154,11 +157,16 @@ PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V)
     PetscCall(VecScatterEnd(sc, v, seq, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(VecGetArray(v, &x));
     PetscCall(VecGetArrayRead(seq, &s));
-    for (PetscInt i = 0; i < ntie; i++)
-      for (PetscInt d = 0; d < 3; d++) {
-        const PetscInt b = hp[2 * i + 1] + d;
-        if (b >= rstart && b < rend) x[b - rstart] = hp[2 * i] >= 0 ? s[3 * i + d] : 0;
-      }
+    for (PetscInt i = 0; i < ntie; i++) {
+      const PetscInt b = hp[2 * i + 1];
+      if (b < rstart || b >= rend) continue; /* (a node's three DOFs are on one rank) */
+      if (normalOnly) { /* friction: the sticks keep their springs, the normal is tied */
+        PetscReal rn = 0;
+        for (PetscInt d = 0; d < 3; d++) rn += hn[3 * i + d] * (x[b - rstart + d] - (hp[2 * i] >= 0 ? s[3 * i + d] : 0));
+        for (PetscInt d = 0; d < 3; d++) x[b - rstart + d] -= rn * hn[3 * i + d];
+      } else
+        for (PetscInt d = 0; d < 3; d++) x[b - rstart + d] = hp[2 * i] >= 0 ? s[3 * i + d] : 0;
+    }
     PetscCall(VecRestoreArrayRead(seq, &s));
     PetscCall(VecRestoreArray(v, &x));
     PetscCall(BVRestoreColumn(V, j, &v));
@@ -170,5 +178,6 @@ PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V)
   PetscCall(ISDestroy(&isFrom));
   PetscCall(PetscFree(from));
   PetscCall(PetscFree(hp));
+  PetscCall(PetscFree(hn));
   PetscFunctionReturn(0);
 }

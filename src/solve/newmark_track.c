@@ -3,8 +3,9 @@
 #include "private/solve.h"
 
 /* The points whose state (open, sticking, slipping: BoltContactStatePointCodes) differs from the
-   preloaded one after some converged step of the transient: what a trained ROM must let change.
-   A restarted run knows only the steps it ran itself. */
+   preloaded one after some converged step of the transient, and those that slip there (a slip
+   moves even where it does not change): what a trained ROM must let change. A restarted run
+   knows only the steps it ran itself. */
 void BoltNewmarkTrackChanges(BoltNewmark *nm)
 {
   nm->trackChanges = PETSC_TRUE;
@@ -29,7 +30,7 @@ void BoltNewmarkTrackStep(BoltNewmark *nm)
   if (!nm->trackChanges) return;
   BoltContactStatePointCodes(nm->op->state, nm->codesNow);
   for (PetscInt k = 0; k < np; k++)
-    if (nm->codesNow[k] != nm->codes0[k]) nm->changed[k] = PETSC_TRUE;
+    if (nm->codesNow[k] != nm->codes0[k] || nm->codesNow[k] == BOLT_POINT_SLIP) nm->changed[k] = PETSC_TRUE;
 }
 
 PetscErrorCode BoltNewmarkGetChangedPoints(BoltNewmark *nm, const PetscBool **changed)
