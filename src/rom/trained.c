@@ -26,7 +26,6 @@ PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads)
 {
   PetscFunctionBeginUser;
   PetscCheck(BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0, rom->comm, PETSC_ERR_USER_INPUT, "-rom_train starts from the FOM's preloaded joint: give a nonzero -preload_force");
-  PetscCheck(!BoltLoadSetBoltCount(loads), rom->comm, PETSC_ERR_SUP, "-rom_train has one preload: drop -rom_train with -preload_bolts");
   rom->augment      = PETSC_FALSE;
   rom->preloadState = PETSC_TRUE;
   rom->penaltyScale = 1;
