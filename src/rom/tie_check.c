@@ -12,6 +12,7 @@ struct BoltROMTieCheck_s {
   PetscReal *KV, *MV;    /* nrows x n, row-major: their rows of K V and M V */
   PetscReal *load, *pre; /* their entries of the load and of the preload */
   Vec        r;          /* the residual at the owned tied DOFs, 0 elsewhere (the full layout) */
+  BoltContactWork *work; /* r at the local contact DOFs (its own: the state's holds V_c q) */
   PetscReal *y;          /* 2n: q + beta v, a + alpha v */
   PetscBool *point;      /* per local contact point: its pair is tied */
   PetscReal *t;          /* 3 per local contact point: a tied point's traction */
@@ -103,6 +104,7 @@ PetscErrorCode ROMTieCheckSetUp(BoltROM *rom, BoltAssembler *asmb, BoltLoadSet *
   PetscCall(VecRestoreArrayRead(layout, &f));
   PetscCall(VecRestoreArrayRead(BoltLoadSetPreload(loads), &p));
   PetscCall(VecDuplicate(layout, &tc->r));
+  PetscCall(BoltContactWorkCreate(c, &tc->work));
   PetscFunctionReturn(0);
 }
 
@@ -117,6 +119,7 @@ PetscErrorCode ROMTieCheckDestroy(BoltROM *rom)
   PetscCall(PetscFree(tc->y));
   PetscCall(PetscFree2(tc->point, tc->t));
   PetscCall(VecDestroy(&tc->r));
+  PetscCall(BoltContactWorkDestroy(&tc->work));
   PetscCall(PetscFree(rom->tie));
   PetscFunctionReturn(0);
 }
@@ -128,7 +131,7 @@ PetscErrorCode ROMHeldTractions(BoltOperator *op, Vec q, Vec v, Vec a, PetscReal
   BoltROM                  *rom = (BoltROM *)BoltOperatorContext(op);
   struct BoltROMTieCheck_s *tc  = rom->tie;
   BoltContactSet           *c   = rom->contact;
-  BoltContactWork          *w   = BoltContactStateWork(BoltOperatorState(op));
+  BoltContactWork          *w;
   const PetscInt            n   = rom->n, np = 4 * BoltContactSetElementCount(c);
   const PetscScalar        *xq, *xv, *xa, *u;
   PetscScalar              *r;
@@ -138,6 +141,7 @@ PetscErrorCode ROMHeldTractions(BoltOperator *op, Vec q, Vec v, Vec a, PetscReal
   *tied = NULL;
   *t    = NULL;
   if (!tc) PetscFunctionReturn(0);
+  w = tc->work;
   PetscCall(VecGetArrayRead(q, &xq));
   PetscCall(VecGetArrayRead(v, &xv));
   PetscCall(VecGetArrayRead(a, &xa));
@@ -157,7 +161,7 @@ PetscErrorCode ROMHeldTractions(BoltOperator *op, Vec q, Vec v, Vec a, PetscReal
     r[tc->dof[i] - rstart] = ri;
   }
   PetscCall(VecRestoreArray(tc->r, &r));
-  PetscCall(BoltContactSetScatter(c, w, tc->r)); /* (the check has made its gaps) */
+  PetscCall(BoltContactSetScatter(c, w, tc->r));
   {
     Vec uc;
     PetscCall(BoltContactWorkGetDisplacements(w, &uc));
