@@ -36,7 +36,7 @@ PetscErrorCode ROMInputMatrix(BoltContactSet *c, BoltLoadSet *loads, Vec layout,
 PetscErrorCode ROMInsertPreloadInputs(BV B, PetscInt col, BoltLoadSet *loads);
 PetscErrorCode ROMTieHeld(BoltROM *rom, BoltContactSet *contact, BV V);
 PetscErrorCode ROMTiedPairs(BoltROM *rom, BoltContactSet *contact, PetscInt *ntie, PetscInt **pairs, PetscReal **normals);
-PetscErrorCode ROMTieCheckSetUp(BoltROM *rom, BoltAssembler *asmb, BoltLoadSet *loads, BV V);
+PetscErrorCode ROMTieCheckSetUp(BoltROM *rom, BoltAssembler *asmb, BoltLoadSet *loads);
 PetscErrorCode ROMTieCheckDestroy(BoltROM *rom);
 PetscErrorCode ROMHeldTractions(BoltOperator *op, Vec q, Vec v, Vec a, PetscReal amp, const PetscBool **tied, const PetscReal **t);
 PetscErrorCode ROMGetBasis(BoltROM *rom, BV *V);

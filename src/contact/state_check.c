@@ -9,8 +9,9 @@
    largest excess of a closed point's tangential traction over the Coulomb cone, relative to
    mu |t_N| (0 without friction); *leaving: the held points (the state's mayChange is false) whose
    state the law would change: an open one that penetrates beyond the activation gap, a closed one
-   in tension beyond its pair's band, a sticking one outside its Coulomb cone. tied (or NULL) marks the points whose traction is given in
-   tTied (3 each), a reduced model's ties': their gaps cannot show it. Collective. */
+   in tension beyond its pair's band, a sticking one outside its Coulomb cone. tied (or NULL)
+   marks the points whose traction is given in tTied (3 each), a reduced model's ties': their
+   gaps cannot show it. Collective. */
 PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[], const PetscBool tied[], const PetscReal tTied[], PetscReal worst[3], PetscInt *leaving)
 {
   BoltContactSet *c   = s->set;

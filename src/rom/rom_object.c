@@ -164,15 +164,7 @@ PetscErrorCode BoltROMSetUp(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *c
   if (rom->opt.file[0]) PetscCall(ROMReuseFile(rom, contact, loads, t0, &reused));
   if (!reused) PetscCall(ROMBuild(rom, asmb, contact, loads, t0));
   PetscCall(ROMResolveOnline(rom, contact));
-  if (rom->opt.trained) { /* its ties' forces, for the check of every node pair */
-    BoltMesh *m;
-    BV        V;
-    PetscBool whole;
-    PetscCall(BoltAssemblerGetMesh(asmb, &m));
-    PetscCall(BoltROMBasisEnsure(rom, m, BoltLoadSetLoad(loads), &whole));
-    PetscCall(ROMGetBasis(rom, &V));
-    if (V) PetscCall(ROMTieCheckSetUp(rom, asmb, loads, V));
-  }
+  if (rom->opt.trained) PetscCall(ROMTieCheckSetUp(rom, asmb, loads)); /* its ties' forces, for the check */
   PetscCall(BoltROMSetTraining(rom, NULL, 0, NULL, NULL)); /* the caller frees them */
   if (rom->view) PetscCall(BoltROMView(rom, PETSC_VIEWER_STDOUT_(rom->comm)));
   PetscFunctionReturn(0);

@@ -45,10 +45,10 @@ static PetscErrorCode ROMTieRows(Mat A, BV V, PetscInt n, IS rows, IS cols, Pets
   PetscFunctionReturn(0);
 }
 
-/* The tied pairs' rows, with the whole basis V (built, or read from the ROM file). The preload's
-   entries are those of the preload as built: its layer forces act inside the bolts, away from
-   the contact pairs. */
-PetscErrorCode ROMTieCheckSetUp(BoltROM *rom, BoltAssembler *asmb, BoltLoadSet *loads, BV V)
+/* The tied pairs' rows, with the whole basis (built, or read from the ROM file; none: no check
+   of the ties). The preload's entries are those of the preload as built: its layer forces act
+   inside the bolts, away from the contact pairs. */
+PetscErrorCode ROMTieCheckSetUp(BoltROM *rom, BoltAssembler *asmb, BoltLoadSet *loads)
 {
   BoltContactSet          *c  = rom->contact;
   const PetscInt           np = 4 * BoltContactSetElementCount(c), n = rom->n;
@@ -58,9 +58,16 @@ PetscErrorCode ROMTieCheckSetUp(BoltROM *rom, BoltAssembler *asmb, BoltLoadSet *
   IS                       rows, cols;
   Vec                      layout = BoltLoadSetLoad(loads);
   const PetscScalar       *f, *p;
+  BoltMesh                *mesh;
+  BV                       V;
+  PetscBool                whole;
 
   PetscFunctionBeginUser;
   PetscCall(ROMTieCheckDestroy(rom));
+  PetscCall(BoltAssemblerGetMesh(asmb, &mesh));
+  PetscCall(BoltROMBasisEnsure(rom, mesh, layout, &whole));
+  PetscCall(ROMGetBasis(rom, &V));
+  if (!V) PetscFunctionReturn(0);
   PetscCall(PetscNew(&tc));
   rom->tie = tc;
   PetscCall(ROMTiedPairs(rom, c, &ntie, &hp, NULL));

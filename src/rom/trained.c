@@ -7,10 +7,10 @@
    a force at each changing pair. Every closed node pair but the changing ones is then tied in the
    basis (no column opens, shears or presses it; under friction only its normal, so that a held
    stick keeps its spring): held by a penalty instead, the stiff springs lock the reduced model;
-   a pair that slips anywhere in the training run changes. The ROM takes the FOM's penalty and band as they are, with no scale of
-   its own; online only the points the FOM changed may change, and the check of every node pair
-   (-contact_check_every) says when a held one would leave its state (docs/reduction.md, "The
-   trained ROM"). */
+   a pair that slips anywhere in the training run changes. The ROM takes the FOM's penalty and
+   band as they are, with no scale of its own; online only the points the FOM changed may change,
+   and the check of every node pair (-contact_check_every) says when a held one would leave its
+   state (docs/reduction.md, "The trained ROM"). */
 #include "private/rom.h"
 
 PetscBool BoltROMIsTrained(const BoltROM *rom)
@@ -21,7 +21,8 @@ PetscBool BoltROMIsTrained(const BoltROM *rom)
 /* The trained ROM's settings, none of them the user's: the penalty law at the FOM's penalty,
    started from the FOM's preloaded state (its multipliers frozen at the held points); the caller
    adds the static shapes of that state and no opening shapes (the changing pairs' inputs take
-   their place), and no cone shapes under friction (the changing pairs include the slipping ones). */
+   their place), and no cone shapes under friction (the changing pairs include the slipping
+   ones). */
 PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads)
 {
   PetscFunctionBeginUser;
