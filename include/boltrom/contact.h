@@ -171,6 +171,7 @@ PetscBool *BoltContactStateActive(BoltContactState *);
 const PetscBool *BoltContactStateActiveOld(const BoltContactState *);
 PetscBool *BoltContactStateReleased(BoltContactState *);
 PetscBool *BoltContactStateDirty(BoltContactState *);
+const PetscReal *BoltContactStateElementBlocks(const BoltContactState *);
 PetscInt BoltContactStateActiveCount(const BoltContactState *);
 PetscBool BoltContactStateAugmented(const BoltContactState *);
 PetscObjectState BoltContactStateVersion(const BoltContactState *);

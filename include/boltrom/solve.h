@@ -46,6 +46,8 @@ PetscErrorCode BoltPreloadStateDestroy(BoltPreloadState **);
 
 /* fom.c: the full-order operator */
 PetscErrorCode BoltFOMCreate(BoltAssembler *, BoltContactSet *, BoltLoadSet *, PetscBool, BoltOperator **);
+/* fom_update.c: the transient's state changes as low-rank updates of its factorisation */
+PetscErrorCode BoltFOMUpdateCreate(BoltOperator *, PetscInt);
 
 /* ------------------------------------------------------------------ dual.c */
 /* The dual contact loop for one linear system K_eff q = rhs - B' lambda (the paper's Algorithm

@@ -29,6 +29,7 @@ struct _n_BoltRunOptions {
   char      exportDir[PETSC_MAX_PATH_LEN]; /* tied K and M, full and reduced, for petsc4py */
   PetscInt  verifyField;                   /* 0 smooth, 1 linear */
   PetscInt  nev;
+  PetscInt  fomUpdateRank; /* -fom_update_rank */
   PetscInt  modalContact; /* BOLT_MODAL_TIED or _PRELOAD: the contact state the modes are about */
 };
 

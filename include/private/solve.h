@@ -43,6 +43,15 @@ struct BoltOperator_s {
 };
 
 
+/* fom.c's context; fom_update.c: its low-rank updates of the transient's factorisation */
+typedef struct _n_BoltFOMUpdate BoltFOMUpdate;
+typedef struct {
+  BoltLoadSet   *loads;
+  BoltFOMUpdate *update; /* NULL: every state change factorised */
+} BoltFOMCtx;
+PetscErrorCode BoltFOMUpdateView(BoltFOMUpdate *, PetscViewer);
+PetscErrorCode BoltFOMUpdateDestroy(BoltFOMUpdate **);
+
 PetscErrorCode BoltDualInnerRegisterAll(void);
 PetscErrorCode BoltDualFactor(BoltDual *d);
 PetscErrorCode BoltDualSolveWithForces(BoltDual *d, Vec rhs0, const PetscReal lambda[], Vec q);

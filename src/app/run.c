@@ -13,6 +13,7 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   o->checkRigid   = PETSC_FALSE;
   o->writeOutput  = PETSC_TRUE;
   o->nev          = 3;
+  o->fomUpdateRank = -1;
   o->fom          = PETSC_FALSE;
   o->rom          = PETSC_FALSE;
   o->romCheckS0   = PETSC_FALSE;
@@ -26,6 +27,7 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   PetscCall(PetscOptionsString("-summary", "Write a JSON summary to this file (its keys: docs/outputs.md)", NULL, o->summary, o->summary, sizeof(o->summary), NULL));
   PetscCall(PetscOptionsBool("-static", "Solve the tied joint (all contact elements active) under the load", NULL, o->staticSolve, &o->staticSolve, NULL));
   PetscCall(PetscOptionsBool("-fom", "Run the full-order model with contact: static preload, then the Newmark transient", NULL, o->fom, &o->fom, NULL));
+  PetscCall(PetscOptionsInt("-fom_update_rank", "Transient FOM: largest rank of a low-rank update of its factorisation before a state change is factorised afresh (-1: from its flops; 0: always)", NULL, o->fomUpdateRank, &o->fomUpdateRank, NULL));
   PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));
   PetscCall(PetscOptionsString("-export_matrices", "Folder for K_tied.petsc and M.petsc (with -rom also rom_K_tied.petsc, rom_M.petsc), PETSc binary; read by python/compare_eigen.py", NULL, o->exportDir, o->exportDir, sizeof(o->exportDir), NULL));
   PetscCall(PetscOptionsBool("-rom_check_s0", "Check the ROM against the FOM at s = s0 with every contact point active (exact for an order-1 ROM without interface reduction)", NULL, o->romCheckS0, &o->romCheckS0, NULL));
@@ -41,6 +43,7 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   }
   PetscCall(PetscOptionsBool("-check_rigid", "Check K r = 0 for the six rigid motions of every part (use with -clamp false)", NULL, o->checkRigid, &o->checkRigid, NULL));
   PetscOptionsEnd();
+  PetscCheck(o->fomUpdateRank >= -1, comm, PETSC_ERR_USER_INPUT, "-fom_update_rank must be >= 0, or -1 to size it from the factorisation (got %" PetscInt_FMT ")", o->fomUpdateRank);
   PetscCheck(o->nev >= 0 && o->nev <= 100, comm, PETSC_ERR_USER_INPUT, "-modal_nev must be in [0, 100] (got %" PetscInt_FMT ")", o->nev);
   PetscFunctionReturn(0);
 }
@@ -159,6 +162,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
 
   PetscFunctionBeginUser;
   PetscCall(BoltFOMCreate(r->asmb, contact, r->loads, r->opt.fom, &r->fomOp));
+  PetscCall(BoltFOMUpdateCreate(r->fomOp, r->opt.fomUpdateRank));
   PetscCall(BoltRunNewmarkCreate(r, r->fomOp, &r->fomNm));
   PetscCall(BoltNewmarkSetBolts(r->fomNm, r->loads));
   {
@@ -219,6 +223,7 @@ PetscErrorCode BoltRunFOM(BoltRun *r)
   PetscCall(BoltNewmarkView(r->fomNm, PETSC_VIEWER_STDOUT_(r->comm)));
   /* at 562k DOFs the FOM's factorisation and the offline phase's two would not fit in memory together */
   PetscCall(BoltNewmarkReleaseSolver(r->fomNm));
+  PetscCall(BoltFOMUpdateCreate(r->fomOp, 0)); /* and the columns its low-rank updates kept */
   PetscCall(BoltOperatorReleaseDamping(r->fomOp)); /* the FOM has run: its damping is not needed any more */
   PetscCall(BoltMemoryRelease());
   PetscCall(BoltMemoryPrint(r->comm, "the FOM run (its solver released)"));

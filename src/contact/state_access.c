@@ -61,6 +61,13 @@ PetscBool *BoltContactStateDirty(BoltContactState *s)
   return s->dirty;
 }
 
+/* 576 per element: the stiffness blocks BoltContactStateStiffness last brought up to date (NULL
+   before its first call). */
+const PetscReal *BoltContactStateElementBlocks(const BoltContactState *s)
+{
+  return s->Ke;
+}
+
 PetscInt BoltContactStateActiveCount(const BoltContactState *s)
 {
   return s->nactive;

@@ -2,10 +2,6 @@
    reached through one scatter. Its contact law is the scene's (-contact_law, -contact_augment). */
 #include "private/solve.h"
 
-typedef struct {
-  BoltLoadSet *loads;
-} BoltFOMCtx;
-
 static PetscErrorCode FOMContactDisplacements(BoltOperator *op, Vec q)
 {
   PetscFunctionBeginUser;
@@ -91,6 +87,7 @@ static PetscErrorCode FOMVectorsLoad(BoltOperator *op, PetscViewer v, PetscInt n
 static PetscErrorCode FOMDestroy(BoltOperator *op)
 {
   PetscFunctionBeginUser;
+  PetscCall(BoltFOMUpdateDestroy(&((BoltFOMCtx *)op->ctx)->update));
   PetscCall(PetscFree(op->ctx));
   PetscFunctionReturn(0);
 }
