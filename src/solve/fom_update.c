@@ -6,13 +6,11 @@
      A = A_ref + U S U',   x = y - Z w,   (I + S G) w = S U' y,   y = A_ref^-1 b,
 
    U holding, per node pair whose penalty block differs from the reference's, the three columns
-   e_b - e_a of its relative displacement (a contact element's matrix is [D -D; -D D] over its
-   two sides), S the differences of the blocks D summed per pair, Z = A_ref^-1 U and G = U' Z.
-   The pairs that have differed from the reference keep their columns of Z and G (its pool), so a
-   change of the state costs the solves of the pairs new to the pool (many right-hand sides at
-   once) and the factorisation of I + S G, of size 3k for k differing pairs. Where the state
-   differs by more than -fom_update_rank columns, or the pool is full, or I + S G is singular,
-   the state is factorised afresh and becomes the reference.
+   e_b - e_a (a contact element's matrix is [D -D; -D D] over its two sides), S the differences
+   of the blocks D summed per pair, Z = A_ref^-1 U and G = U' Z. The pairs that have differed
+   keep their columns of Z and G (the pool), so a change costs the solves of the pairs new to it
+   and the LU of I + S G (3k for k pairs). Past -fom_update_rank columns, a full pool or a
+   singular I + S G, the state is factorised afresh and becomes the reference.
 
    Every rank holds the correction (S, G, I + S G), built from the differing elements' records
    gathered and put in the order of their keys; Z and the vectors are distributed as K's rows. */
@@ -36,7 +34,7 @@ struct _n_BoltFOMUpdate {
   FOMPair   *pool;
   PetscInt  *sorted; /* pool slots in key order */
   PetscReal *Z, *G;  /* nloc x 3 per pool pair; 3 alloc x 3 alloc (column-major) */
-  PetscInt   nloc, rstart;
+  PetscInt   nloc, rstart, N; /* this rank's rows, the first, and the model's DOFs */
   /* the correction in force: k pairs in key order */
   PetscInt      k, kAlloc, pAlloc;
   FOMPair      *pairs;
@@ -63,18 +61,30 @@ static int FOMPairCompare(const void *a, const void *b)
   return ka < kb ? -1 : (ka > kb ? 1 : 0);
 }
 
-/* The pool slot of a pair, -1 if it has none (binary search over the slots in key order). */
-static PetscInt FOMPoolFind(const BoltFOMUpdate *u, PetscInt64 key)
+/* A node pair's key, from its two nodes' first DOFs (-1 where clamped). */
+static PetscInt64 FOMPairKey(const BoltFOMUpdate *u, PetscInt dofA, PetscInt dofB)
 {
-  PetscInt lo = 0, hi = u->npool - 1;
+  return (PetscInt64)(dofA + 1) * (PetscInt64)(u->N + 1) + (PetscInt64)(dofB + 1);
+}
+
+/* Where key is among n pairs in key order (pairs[order[i]], or pairs[i] if order is NULL), or -1. */
+static PetscInt FOMPairFind(const FOMPair *pairs, const PetscInt *order, PetscInt n, PetscInt64 key)
+{
+  PetscInt lo = 0, hi = n - 1;
   while (lo <= hi) {
-    const PetscInt   mid = (lo + hi) / 2;
-    const PetscInt64 km  = u->pool[u->sorted[mid]].key;
-    if (km == key) return u->sorted[mid];
+    const PetscInt   mid = (lo + hi) / 2, at = order ? order[mid] : mid;
+    const PetscInt64 km  = pairs[at].key;
+    if (km == key) return at;
     if (km < key) lo = mid + 1;
     else hi = mid - 1;
   }
   return -1;
+}
+
+/* A DOF's row in this rank's part of the vectors, -1 if another rank's (or clamped). */
+static PetscInt FOMLocalRow(const BoltFOMUpdate *u, PetscInt dof)
+{
+  return dof >= u->rstart && dof < u->rstart + u->nloc ? dof - u->rstart : -1;
 }
 
 static PetscErrorCode FOMPoolInsert(BoltFOMUpdate *u, const FOMPair *p)
@@ -179,8 +189,9 @@ static PetscErrorCode FOMPoolSolve(BoltFOMUpdate *u, BoltDual *d, MPI_Comm comm,
   for (PetscInt j = 0; j < nnew; j++)
     for (PetscInt l = 0; l < 3; l++) {
       const FOMPair *p = &u->pool[first + j];
-      if (p->dofB[l] >= u->rstart && p->dofB[l] < u->rstart + nloc) b[p->dofB[l] - u->rstart + nloc * (3 * j + l)] += 1.0;
-      if (p->dofA[l] >= u->rstart && p->dofA[l] < u->rstart + nloc) b[p->dofA[l] - u->rstart + nloc * (3 * j + l)] -= 1.0;
+      const PetscInt rb = FOMLocalRow(u, p->dofB[l]), ra = FOMLocalRow(u, p->dofA[l]);
+      if (rb >= 0) b[rb + nloc * (3 * j + l)] += 1.0;
+      if (ra >= 0) b[ra + nloc * (3 * j + l)] -= 1.0;
     }
   PetscCall(MatDenseRestoreArrayWrite(B, &b));
   PetscCall(MatCreateDense(comm, nloc, PETSC_DECIDE, PETSC_DETERMINE, mn, &u->Z[nloc * mo], &X));
@@ -192,12 +203,12 @@ static PetscErrorCode FOMPoolSolve(BoltFOMUpdate *u, BoltDual *d, MPI_Comm comm,
   for (PetscInt i = 0; i < u->npool; i++)
     for (PetscInt l = 0; l < 3; l++) {
       const FOMPair *p  = &u->pool[i];
-      const PetscInt rb = p->dofB[l] - u->rstart, ra = p->dofA[l] - u->rstart;
+      const PetscInt rb = FOMLocalRow(u, p->dofB[l]), ra = FOMLocalRow(u, p->dofA[l]);
       for (PetscInt c = 0; c < mn; c++) {
         const PetscReal *z = &u->Z[nloc * (mo + c)];
         PetscReal        v = 0;
-        if (p->dofB[l] >= 0 && rb >= 0 && rb < nloc) v += z[rb];
-        if (p->dofA[l] >= 0 && ra >= 0 && ra < nloc) v -= z[ra];
+        if (rb >= 0) v += z[rb];
+        if (ra >= 0) v -= z[ra];
         Gnew[3 * i + l + m * c] = v;
       }
     }
@@ -218,7 +229,7 @@ static PetscErrorCode FOMCorrect(BoltFOMUpdate *u, BoltOperator *op, BoltDual *d
   const PetscReal *Ke = BoltContactStateElementBlocks(BoltOperatorState(op));
   const PetscInt   ne = BoltContactSetElementCount(c), LD = 3 * u->alloc;
   MPI_Comm         comm = BoltOperatorComm(op);
-  PetscInt         nsend = 0, total, nrec, np = 0, k, nnew = 0, m, *keys, *perm, N;
+  PetscInt         nsend = 0, total, nrec, np = 0, k, nnew = 0, m, *keys, *perm;
 
   PetscFunctionBeginUser;
   *done = PETSC_FALSE;
@@ -240,7 +251,6 @@ static PetscErrorCode FOMCorrect(BoltFOMUpdate *u, BoltOperator *op, BoltDual *d
   PetscCall(BoltGatherAll(comm, MPIU_REAL, u->send, nsend, &u->recv, &u->recvAlloc, &total, NULL));
   nrec = total / FOM_RECORD;
   if (nrec / 4 * 3 > u->maxRank) PetscFunctionReturn(0); /* a pair lies in at most four elements */
-  PetscCall(MatGetSize(d->Keff, &N, NULL));
   PetscCall(PetscMalloc2(nrec + 1, &keys, nrec + 1, &perm));
   for (PetscInt i = 0; i < nrec; i++) {
     keys[i] = (PetscInt)u->recv[FOM_RECORD * i];
@@ -261,7 +271,7 @@ static PetscErrorCode FOMCorrect(BoltFOMUpdate *u, BoltOperator *op, BoltDual *d
         p->dofB[l] = (PetscInt)r0[13 + 3 * a + l];
       }
       if (!nz || (p->dofA[0] < 0 && p->dofB[0] < 0)) continue;
-      p->key = (PetscInt64)(p->dofA[0] + 1) * (PetscInt64)(N + 1) + (PetscInt64)(p->dofB[0] + 1);
+      p->key = FOMPairKey(u, p->dofA[0], p->dofB[0]);
       np++;
     }
   }
@@ -271,37 +281,27 @@ static PetscErrorCode FOMCorrect(BoltFOMUpdate *u, BoltOperator *op, BoltDual *d
     if (k == 0 || u->pairs[k - 1].key != u->pairs[i].key) u->pairs[k++] = u->pairs[i];
   if (3 * k > u->maxRank) goto out;
   PetscCall(FOMCorrectionReserve(u, 0, k));
-  for (PetscInt i = 0; i < k; i++)
-    if (FOMPoolFind(u, u->pairs[i].key) < 0) nnew++;
+  for (PetscInt i = 0; i < k; i++) { /* each pair's pool slot, -1 if it is new */
+    u->act[i] = FOMPairFind(u->pool, u->sorted, u->npool, u->pairs[i].key);
+    if (u->act[i] < 0) nnew++;
+  }
   if (u->npool + nnew > u->alloc) goto out;
   if (nnew) { /* the new pairs join the pool */
     const PetscInt first = u->npool;
     for (PetscInt i = 0; i < k; i++)
-      if (FOMPoolFind(u, u->pairs[i].key) < 0) PetscCall(FOMPoolInsert(u, &u->pairs[i]));
+      if (u->act[i] < 0) {
+        u->act[i] = u->npool;
+        PetscCall(FOMPoolInsert(u, &u->pairs[i]));
+      }
     PetscCall(FOMPoolSolve(u, d, comm, first, nnew));
   }
   /* S: the blocks' differences summed per pair, in the order of the element keys */
   m = 3 * k;
   PetscCall(PetscArrayzero(u->S, m * m));
-  for (PetscInt i = 0; i < k; i++) u->act[i] = FOMPoolFind(u, u->pairs[i].key);
   for (PetscInt i = 0; i < nrec; i++) {
     const PetscReal *r0 = &u->recv[FOM_RECORD * perm[i]];
     PetscInt         at[4];
-    for (PetscInt a = 0; a < 4; a++) {
-      FOMPair   p;
-      PetscInt  lo = 0, hi = k - 1;
-      p.key = (PetscInt64)((PetscInt)r0[1 + 3 * a] + 1) * (PetscInt64)(N + 1) + (PetscInt64)((PetscInt)r0[13 + 3 * a] + 1);
-      at[a] = -1;
-      while (lo <= hi) {
-        const PetscInt mid = (lo + hi) / 2;
-        if (u->pairs[mid].key == p.key) {
-          at[a] = mid;
-          break;
-        }
-        if (u->pairs[mid].key < p.key) lo = mid + 1;
-        else hi = mid - 1;
-      }
-    }
+    for (PetscInt a = 0; a < 4; a++) at[a] = FOMPairFind(u->pairs, NULL, k, FOMPairKey(u, (PetscInt)r0[1 + 3 * a], (PetscInt)r0[13 + 3 * a]));
     for (PetscInt a = 0; a < 4; a++)
       for (PetscInt b = 0; b < 4; b++) {
         if (at[a] < 0 || at[b] < 0) continue;
@@ -401,10 +401,10 @@ static PetscErrorCode FOMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x
   for (PetscInt i = 0; i < k; i++)
     for (PetscInt l = 0; l < 3; l++) {
       const FOMPair *p  = &u->pairs[i];
-      const PetscInt rb = p->dofB[l] - u->rstart, ra = p->dofA[l] - u->rstart;
+      const PetscInt rb = FOMLocalRow(u, p->dofB[l]), ra = FOMLocalRow(u, p->dofA[l]);
       PetscReal      v  = 0;
-      if (p->dofB[l] >= 0 && rb >= 0 && rb < nloc) v += PetscRealPart(xa[rb]);
-      if (p->dofA[l] >= 0 && ra >= 0 && ra < nloc) v -= PetscRealPart(xa[ra]);
+      if (rb >= 0) v += PetscRealPart(xa[rb]);
+      if (ra >= 0) v -= PetscRealPart(xa[ra]);
       u->t[3 * i + l] = v;
     }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, u->t, m, MPIU_REAL, MPIU_SUM, BoltOperatorComm(op)));
@@ -459,6 +459,7 @@ PetscErrorCode BoltFOMUpdateCreate(BoltOperator *op, PetscInt maxRank)
   u->maxRank = maxRank;
   PetscCall(MatGetOwnershipRange(BoltOperatorStiffness(op), &u->rstart, &rend));
   u->nloc = rend - u->rstart;
+  PetscCall(MatGetSize(BoltOperatorStiffness(op), &u->N, NULL));
   PetscCall(PetscMalloc1(576 * BoltContactSetElementCount(BoltOperatorContact(op)) + 1, &u->Ke));
   ctx->update = u;
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_FACTOR, (void (*)(void))FOMUpdateFactor));
