@@ -3,10 +3,9 @@
 the code's shape must leave every history bit-identical on one rank. Eleven histories: four
 cases under the paper's stick law (written from the code before its objects were reshaped), the
 default strict law (strict-step: 50 steps, FOM and ROM) and Coulomb friction (coulomb-step,
-mu 0.1: 30 steps, FOM and ROM, about 150 of 704 contact points sliding by the end). The FOM
-histories of uzawa-penalty-sine, strict-step and coulomb-step were rewritten when the transient
-FOM began to take contact state changes as low-rank updates (moved by 2e-11, 2.2e-8 and 5.7e-10
-of their largest values); with -fom_update_rank 0 the code kept the previous bits of all eleven.
+mu 0.1: 30 steps, FOM and ROM, about 150 of 704 contact points sliding by the end). A history
+is rewritten (--write --cases ...) only by a change meant to move its arithmetic, and the commit
+that does it says by how much.
 
 The bits hold for OpenBLAS's Haswell kernels (the script sets OPENBLAS_CORETYPE=Haswell), the
 compiler and the MUMPS/PETSc/OpenBLAS builds they were made with (each new case stores them

@@ -31,6 +31,13 @@ PetscErrorCode BoltJSONClose(BoltJSON **);
 
 /* ------------------------------------------------------------------ exact_sum.c */
 /* n sums over ranks that give the same bits on any partition (two fixed grids per term) */
+typedef struct _n_BoltCapacitance BoltCapacitance; /* the small system of a Woodbury correction */
+PetscErrorCode BoltCapacitanceCreate(BoltCapacitance **);
+PetscErrorCode BoltCapacitanceFactor(BoltCapacitance *, PetscInt, const PetscReal[], const PetscReal[], PetscInt, const PetscInt[], PetscBool *);
+PetscErrorCode BoltCapacitanceFactorBlocks(BoltCapacitance *, PetscInt, const PetscReal[], const PetscReal[], PetscInt, const PetscInt[], PetscBool *);
+PetscErrorCode BoltCapacitanceSolve(BoltCapacitance *, const PetscReal[], PetscReal[]);
+PetscErrorCode BoltCapacitanceDestroy(BoltCapacitance **);
+
 typedef struct _n_BoltExactSum BoltExactSum;
 PetscErrorCode BoltExactSumBegin(BoltExactSum *, PetscInt, PetscReal, PetscInt);
 void           BoltExactSumAdd(BoltExactSum *, const PetscReal[]);

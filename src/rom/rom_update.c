@@ -10,11 +10,11 @@
    reference's (three columns per node of a contact element: a "slot"), S the differences of
    those blocks, Z = A_ref^-1 U and G = U' Z. Each reference keeps Z and G of every slot that
    has differed from it (its pool), so a change of the set costs the solves of the slots new to
-   the pool and the factorisation of I + S G, of size 3k for k differing slots. Where every
-   reference differs by more than -rom_update_rank columns (or its pool is full, or I + S G is
-   singular), the current state is factorised and becomes a reference, replacing the one unused
-   longest. The joint opens and closes through the same states period after period, so a few
-   references carry a whole run.
+   the pool and the factorisation of I + S G, of size 3k for k differing slots (with nodal points
+   the smaller symmetric system of src/sys/capacitance.c). Where every reference differs by more
+   than -rom_update_rank columns (or its pool is full, or I + S G is singular), the current state
+   is factorised and becomes a reference, replacing the one unused longest. The joint opens and
+   closes through the same states period after period, so a few references carry a whole run.
 
    Every rank holds the references and the correction, built from the slots' records gathered
    and put in the order of their names (element key and node): the ROM's history has the same
@@ -50,8 +50,11 @@ struct BoltROMUpdate_s {
   PetscInt      k;
   PetscInt     *act, *first, *last, *node; /* per active slot: pool slot, its element's first and last active slot, its node */
   PetscReal    *S;               /* 36 per active slot: its rows of the element's difference (3 x 12, row-major) */
-  PetscReal    *C, *t, *w;
-  PetscBLASInt *piv;
+  PetscReal    *C, *t, *w; /* C: S whole where it is not block-diagonal */
+  PetscBool        blocks; /* S is block-diagonal (nodal points): its system is cap's */
+  PetscReal       *B;      /* blocks: S's 3 x 3 block per slot */
+  PetscInt        *idx;    /* blocks: each column's row of G */
+  BoltCapacitance *cap;
   /* gathering */
   PetscReal   *send, *recv;
   PetscInt     sendAlloc, recvAlloc, recAlloc;
@@ -177,6 +180,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   BoltContactSet *c   = rom->contact;
   const PetscInt  ne = BoltContactSetElementCount(c);
   const PetscInt  n = rom->n, recLen = 3 + 36, LD = 3 * u->alloc;
+  PetscBool       ok;
   PetscInt        nsend = 0, nrec = 0, total = 0, nnew = 0, m, mine;
 
   PetscFunctionBeginUser;
@@ -256,36 +260,31 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
     u->first[i] = (i > 0 && u->name[i - 1] / 4 == u->name[i] / 4) ? u->first[i - 1] : i;
   }
   for (PetscInt i = nrec - 1; i >= 0; i--) u->last[i] = (i < nrec - 1 && u->name[i + 1] / 4 == u->name[i] / 4) ? u->last[i + 1] : i;
-  /* column by column of G (its rows of the active slots gathered into t), the three rows of a slot
-     side by side: three independent sums, each in the order l, s */
-  for (PetscInt j = 0; j < nrec; j++)
-    for (PetscInt q = 0; q < 3; q++) {
-      const PetscReal *Gc = &ref->G[LD * (3 * u->act[j] + q)];
-      PetscReal       *Cc = &u->C[m * (3 * j + q)];
-      for (PetscInt l = 0; l < nrec; l++)
-        for (PetscInt s = 0; s < 3; s++) u->t[3 * l + s] = Gc[3 * u->act[l] + s];
-      for (PetscInt i = 0; i < nrec; i++) {
+  /* the system of I + S G (src/sys/capacitance.c). With nodal points a slot's rows of its
+     element's difference touch its own node alone: S is block-diagonal, its blocks symmetric */
+  for (PetscInt i = 0; i < 3 * nrec; i++) u->idx[i] = 3 * u->act[i / 3] + i % 3;
+  ok        = PETSC_TRUE;
+  u->blocks = PETSC_TRUE;
+  for (PetscInt i = 0; i < nrec && u->blocks; i++)
+    for (PetscInt p = 0; p < 3; p++)
+      for (PetscInt c = 0; c < 12; c++) {
         const PetscReal *Si = &u->S[36 * i];
-        PetscReal        v0 = (i == j && q == 0) ? 1.0 : 0.0, v1 = (i == j && q == 1) ? 1.0 : 0.0, v2 = (i == j && q == 2) ? 1.0 : 0.0;
-        for (PetscInt l = u->first[i]; l <= u->last[i]; l++)
-          for (PetscInt s = 0; s < 3; s++) {
-            const PetscInt  c = 3 * u->node[l] + s;
-            const PetscReal g = u->t[3 * l + s];
-            v0 += Si[c] * g;
-            v1 += Si[12 + c] * g;
-            v2 += Si[24 + c] * g;
-          }
-        Cc[3 * i]     = v0;
-        Cc[3 * i + 1] = v1;
-        Cc[3 * i + 2] = v2;
+        if (c / 3 == u->node[i] ? Si[12 * p + c] != Si[12 * (c % 3) + 3 * u->node[i] + p] : Si[12 * p + c] != 0) u->blocks = PETSC_FALSE;
       }
-    }
-  if (m > 0) {
-    PetscBLASInt bm, info;
-    PetscCall(PetscBLASIntCast(m, &bm));
-    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bm, &bm, u->C, &bm, u->piv, &info));
-    if (info != 0) PetscFunctionReturn(0); /* singular: this reference cannot carry the state */
+  if (u->blocks) {
+    for (PetscInt i = 0; i < nrec; i++)
+      for (PetscInt l = 0; l < 3; l++)
+        for (PetscInt q = 0; q < 3; q++) u->B[9 * i + l + 3 * q] = u->S[36 * i + 12 * l + 3 * u->node[i] + q];
+    PetscCall(BoltCapacitanceFactorBlocks(u->cap, nrec, u->B, ref->G, LD, u->idx, &ok));
+  } else { /* S whole: each slot's rows over its element's active slots */
+    PetscCall(PetscArrayzero(u->C, m * m));
+    for (PetscInt i = 0; i < nrec; i++)
+      for (PetscInt l = u->first[i]; l <= u->last[i]; l++)
+        for (PetscInt p = 0; p < 3; p++)
+          for (PetscInt q = 0; q < 3; q++) u->C[3 * i + p + m * (3 * l + q)] = u->S[36 * i + 12 * p + 3 * u->node[l] + q];
+    PetscCall(BoltCapacitanceFactor(u->cap, m, u->C, ref->G, LD, u->idx, &ok));
   }
+  if (!ok) PetscFunctionReturn(0); /* singular: this reference cannot carry the state */
   u->k          = nrec;
   u->cur        = r;
   ref->lastUsed = u->clock++;
@@ -381,10 +380,10 @@ static PetscErrorCode ROMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x
 {
   BoltROM       *rom = (BoltROM *)BoltOperatorContext(op);
   BoltROMUpdate *u   = rom->update;
-  const PetscInt n = rom->n, k = u->k, m = 3 * k;
+  const PetscInt n = rom->n, k = u->k;
   PetscScalar   *xa;
   ROMReference  *ref;
-  PetscBLASInt   bn, bm, one = 1, three = 3, info;
+  PetscBLASInt   bn, one = 1, three = 3;
   PetscReal      pone = 1, zero = 0, mone = -1;
 
   PetscFunctionBeginUser;
@@ -393,19 +392,11 @@ static PetscErrorCode ROMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x
   PetscCall(KSPSolve(ref->ksp, b, x));
   if (!k) PetscFunctionReturn(0);
   PetscCall(PetscBLASIntCast(n, &bn));
-  PetscCall(PetscBLASIntCast(m, &bm));
   PetscCall(VecGetArray(x, &xa));
   /* U' x and x - Z w slot by slot, on the pool's columns where they are (a copy of the active
      ones side by side cost more, at every set change, than these calls) */
   for (PetscInt i = 0; i < k; i++) PetscCallBLAS("BLASgemv", BLASgemv_("T", &bn, &three, &pone, &ref->U[3 * n * u->act[i]], &bn, xa, &one, &zero, &u->t[3 * i], &one));
-  for (PetscInt i = 0; i < k; i++)
-    for (PetscInt p = 0; p < 3; p++) {
-      PetscReal v = 0;
-      for (PetscInt l = u->first[i]; l <= u->last[i]; l++)
-        for (PetscInt s = 0; s < 3; s++) v += u->S[36 * i + 12 * p + 3 * u->node[l] + s] * u->t[3 * l + s];
-      u->w[3 * i + p] = v;
-    }
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bm, &one, u->C, &bm, u->piv, u->w, &bm, &info));
+  PetscCall(BoltCapacitanceSolve(u->cap, u->t, u->w));
   for (PetscInt i = 0; i < k; i++) PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &three, &mone, &ref->Z[3 * n * u->act[i]], &bn, &u->w[3 * i], &one, &pone, xa, &one));
   PetscCall(VecRestoreArray(x, &xa));
   PetscFunctionReturn(0);
@@ -452,7 +443,9 @@ PetscErrorCode BoltROMUpdateCreate(BoltROM *rom, BoltOperator *op, PetscInt maxR
   PetscCall(PetscArraycpy(u->Kcur, rom->Ke, 144 * ne)); /* K_cr is built: its blocks are the current ones */
   for (PetscInt e = 0; e < ne; e++) u->devRun[e] = PETSC_FALSE;
   PetscCall(PetscMalloc5(u->alloc, &u->act, u->alloc, &u->first, u->alloc, &u->last, u->alloc, &u->node, 36 * u->alloc, &u->S));
-  PetscCall(PetscMalloc4(9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w, 3 * u->alloc, &u->piv));
+  PetscCall(PetscMalloc3(9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w));
+  PetscCall(PetscMalloc2(9 * u->alloc, &u->B, 3 * u->alloc, &u->idx));
+  PetscCall(BoltCapacitanceCreate(&u->cap));
   rom->update    = u;
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_FACTOR, (void (*)(void))ROMUpdateFactor));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_SOLVE, (void (*)(void))ROMUpdateSolve));
@@ -488,7 +481,9 @@ PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **up)
   }
   PetscCall(PetscFree2(u->Kcur, u->devRun));
   PetscCall(PetscFree5(u->act, u->first, u->last, u->node, u->S));
-  PetscCall(PetscFree4(u->C, u->t, u->w, u->piv));
+  PetscCall(PetscFree3(u->C, u->t, u->w));
+  PetscCall(PetscFree2(u->B, u->idx));
+  PetscCall(BoltCapacitanceDestroy(&u->cap));
   PetscCall(PetscFree(u->send));
   PetscCall(PetscFree(u->recv));
   PetscCall(PetscFree2(u->name, u->perm));

@@ -9,8 +9,9 @@
    e_b - e_a (a contact element's matrix is [D -D; -D D] over its two sides), S the differences
    of the blocks D summed per pair, Z = A_ref^-1 U and G = U' Z. The pairs that have differed
    keep their columns of Z and G (the pool), so a change costs the solves of the pairs new to it
-   and the LU of I + S G (3k for k pairs). Past -fom_update_rank columns, a full pool or a
-   singular I + S G, the state is factorised afresh and becomes the reference.
+   and the system of I + S G (3k for k pairs; src/sys/capacitance.c). Past -fom_update_rank
+   columns, a full pool or a singular I + S G, the state is factorised afresh and becomes the
+   reference.
 
    Every rank holds the correction (S, G, I + S G), built from the differing elements' records
    gathered and put in the order of their keys; Z and the vectors are distributed as K's rows. */
@@ -38,9 +39,9 @@ struct _n_BoltFOMUpdate {
   /* the correction in force: k pairs in key order */
   PetscInt      k, kAlloc, pAlloc;
   FOMPair      *pairs;
-  PetscInt     *act;           /* each pair's pool slot */
-  PetscReal    *S, *C, *t, *w; /* 3k x 3k, 3k x 3k, 3k, 3k */
-  PetscBLASInt *piv;
+  PetscInt        *act, *idx;  /* each pair's pool slot; each column's row of G */
+  PetscReal       *S, *t, *w;  /* 3k x 3k, 3k, 3k */
+  BoltCapacitance *cap;        /* the system of I + S G */
   /* gathering */
   PetscReal *send, *recv;
   PetscInt   sendAlloc, recvAlloc;
@@ -102,10 +103,10 @@ static PetscErrorCode FOMPoolInsert(BoltFOMUpdate *u, const FOMPair *p)
 }
 
 /* The largest correction, from the first transient factorisation (by MUMPS; another solver
-   takes FOM_RANK_OTHER): the dense LU of I + S G, 2 m^3 / 3 flops, is paid at every state change
-   (two or three a step under friction) and a factorisation once per reference, so the state is
-   factorised afresh once m^3 would pass a third of the factorisation's flops (docs/decisions.md);
-   and a full pool of Z (2 m columns) may take up to four times the factorisation's memory. */
+   takes FOM_RANK_OTHER): the dense system of I + S G, up to 2 m^3 / 3 flops, is paid at every
+   state change (two or three a step under friction) and a factorisation once per reference, so
+   the state is factorised afresh once m^3 would pass a third of the factorisation's flops
+   (docs/decisions.md); and a full pool of Z (2 m columns) may take up to four times the factorisation's memory. */
 #define FOM_RANK_OTHER 900
 static PetscErrorCode FOMResolveRank(BoltFOMUpdate *u, BoltDual *d)
 {
@@ -166,10 +167,10 @@ static PetscErrorCode FOMCorrectionReserve(BoltFOMUpdate *u, PetscInt np, PetscI
   }
   if (k > u->kAlloc) {
     u->kAlloc = PetscMax(k, PetscMin(2 * u->kAlloc, u->maxRank / 3 + 1));
-    PetscCall(PetscFree(u->act));
-    PetscCall(PetscFree5(u->S, u->C, u->t, u->w, u->piv));
-    PetscCall(PetscMalloc1(u->kAlloc, &u->act));
-    PetscCall(PetscMalloc5(9 * u->kAlloc * u->kAlloc, &u->S, 9 * u->kAlloc * u->kAlloc, &u->C, 3 * u->kAlloc, &u->t, 3 * u->kAlloc, &u->w, 3 * u->kAlloc, &u->piv));
+    PetscCall(PetscFree2(u->act, u->idx));
+    PetscCall(PetscFree3(u->S, u->t, u->w));
+    PetscCall(PetscMalloc2(u->kAlloc, &u->act, 3 * u->kAlloc, &u->idx));
+    PetscCall(PetscMalloc3(9 * u->kAlloc * u->kAlloc, &u->S, 3 * u->kAlloc, &u->t, 3 * u->kAlloc, &u->w));
   }
   PetscFunctionReturn(0);
 }
@@ -309,38 +310,12 @@ static PetscErrorCode FOMCorrect(BoltFOMUpdate *u, BoltOperator *op, BoltDual *d
           for (PetscInt q = 0; q < 3; q++) u->S[3 * at[a] + l + m * (3 * at[b] + q)] += r0[25 + 12 * (3 * a + l) + 3 * b + q];
       }
   }
-  /* C = I + S G over the pairs' columns of G; S is sparse (a pair couples with its elements'
-     other pairs only, with nodal contact points with none), so it is applied entry by entry */
+  /* the system of I + S G over the pairs' columns of G */
   if (m > 0) {
-    PetscBLASInt bm, info;
-    PetscInt     nnz = 0, *start, *row;
-    PetscReal   *val;
-    for (PetscInt i = 0; i < m * m; i++) nnz += u->S[i] != 0 ? 1 : 0;
-    PetscCall(PetscMalloc3(m + 1, &start, nnz + 1, &row, nnz + 1, &val));
-    nnz = 0;
-    for (PetscInt l = 0; l < m; l++) { /* S's columns, their non-zeros */
-      start[l] = nnz;
-      for (PetscInt i = 0; i < m; i++)
-        if (u->S[i + m * l] != 0) {
-          row[nnz]   = i;
-          val[nnz++] = u->S[i + m * l];
-        }
-    }
-    start[m] = nnz;
-    PetscCall(PetscArrayzero(u->C, m * m));
-    for (PetscInt j = 0; j < m; j++) {
-      const PetscReal *Gc = &u->G[LD * (3 * u->act[j / 3] + j % 3)];
-      PetscReal       *Cc = &u->C[m * j];
-      for (PetscInt l = 0; l < m; l++) {
-        const PetscReal g = Gc[3 * u->act[l / 3] + l % 3];
-        for (PetscInt z = start[l]; z < start[l + 1]; z++) Cc[row[z]] += val[z] * g;
-      }
-      Cc[j] += 1.0;
-    }
-    PetscCall(PetscFree3(start, row, val));
-    PetscCall(PetscBLASIntCast(m, &bm));
-    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bm, &bm, u->C, &bm, u->piv, &info));
-    if (info != 0) goto out; /* singular: the reference cannot carry the state */
+    PetscBool ok;
+    for (PetscInt j = 0; j < m; j++) u->idx[j] = 3 * u->act[j / 3] + j % 3;
+    PetscCall(BoltCapacitanceFactor(u->cap, m, u->S, u->G, LD, u->idx, &ok));
+    if (!ok) goto out; /* singular: the reference cannot carry the state */
   }
   u->k  = k;
   *done = PETSC_TRUE;
@@ -391,8 +366,8 @@ static PetscErrorCode FOMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x
   BoltFOMUpdate *u = ((BoltFOMCtx *)BoltOperatorContext(op))->update;
   const PetscInt k = u->valid ? u->k : 0, m = 3 * k, nloc = u->nloc;
   PetscScalar   *xa;
-  PetscBLASInt   bn, bm, one = 1, three = 3, info;
-  PetscReal      pone = 1, zero = 0, mone = -1;
+  PetscBLASInt   bn, one = 1, three = 3;
+  PetscReal      pone = 1, mone = -1;
 
   PetscFunctionBeginUser;
   PetscCall(KSPSolve(d->ksp, b, x));
@@ -408,10 +383,8 @@ static PetscErrorCode FOMUpdateSolve(BoltOperator *op, BoltDual *d, Vec b, Vec x
       u->t[3 * i + l] = v;
     }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, u->t, m, MPIU_REAL, MPIU_SUM, BoltOperatorComm(op)));
+  PetscCall(BoltCapacitanceSolve(u->cap, u->t, u->w));
   PetscCall(PetscBLASIntCast(nloc, &bn));
-  PetscCall(PetscBLASIntCast(m, &bm));
-  PetscCallBLAS("BLASgemv", BLASgemv_("N", &bm, &bm, &pone, u->S, &bm, u->t, &one, &zero, u->w, &one));
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bm, &one, u->C, &bm, u->piv, u->w, &bm, &info));
   if (nloc > 0)
     for (PetscInt i = 0; i < k; i++) PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &three, &mone, &u->Z[nloc * 3 * u->act[i]], &bn, &u->w[3 * i], &one, &pone, xa, &one));
   PetscCall(VecRestoreArray(x, &xa));
@@ -461,6 +434,7 @@ PetscErrorCode BoltFOMUpdateCreate(BoltOperator *op, PetscInt maxRank)
   u->nloc = rend - u->rstart;
   PetscCall(MatGetSize(BoltOperatorStiffness(op), &u->N, NULL));
   PetscCall(PetscMalloc1(576 * BoltContactSetElementCount(BoltOperatorContact(op)) + 1, &u->Ke));
+  PetscCall(BoltCapacitanceCreate(&u->cap));
   ctx->update = u;
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_FACTOR, (void (*)(void))FOMUpdateFactor));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_SOLVE, (void (*)(void))FOMUpdateSolve));
@@ -488,8 +462,9 @@ PetscErrorCode BoltFOMUpdateDestroy(BoltFOMUpdate **up)
   PetscCall(PetscFree2(u->pool, u->sorted));
   PetscCall(PetscFree2(u->Z, u->G));
   PetscCall(PetscFree(u->pairs));
-  PetscCall(PetscFree(u->act));
-  PetscCall(PetscFree5(u->S, u->C, u->t, u->w, u->piv));
+  PetscCall(PetscFree2(u->act, u->idx));
+  PetscCall(PetscFree3(u->S, u->t, u->w));
+  PetscCall(BoltCapacitanceDestroy(&u->cap));
   PetscCall(PetscFree(u->send));
   PetscCall(PetscFree(u->recv));
   PetscCall(PetscFree(*up));
