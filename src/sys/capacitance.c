@@ -3,7 +3,7 @@
      (A_ref + U S U')^-1 b = y - Z w,   w = (I + S G)^-1 S U' y,   y = A_ref^-1 b,
 
    with Z = A_ref^-1 U and G = U' Z (m x m for m columns of U). Factorising I + S G costs
-   2 m^3 / 3 at every change of S, the larger part of a frictional step's cost. Where S is
+   2 m^3 / 3 at every change of S (two or three a step under friction). Where S is
    block-diagonal in symmetric 3 x 3 blocks (a node pair's penalty difference: nodal contact
    points), each block is S_i = Q_i L_i Q_i' with only its non-zero eigenvalues kept, and
 
@@ -79,12 +79,11 @@ static PetscBool CapIsSymmetricBlocks(PetscInt m, const PetscReal S[])
 static PetscErrorCode CapFactorBlocks(BoltCapacitance *cap, const PetscReal B[], const PetscReal G[], PetscInt ldG, const PetscInt idx[], PetscBool *ok)
 {
   const PetscInt m = cap->m, k = m / 3;
-  PetscInt      *at;
   PetscReal     *inv;
   PetscBLASInt   three = 3, lw = 16, info, br;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(m + 1, &at, m + 1, &inv));
+  PetscCall(PetscMalloc1(m + 1, &inv));
   cap->r = 0;
   for (PetscInt b = 0; b < k; b++) {
     PetscReal *Qb = &cap->Q[9 * b], ev[3], w16[16], mx = 0;
@@ -97,8 +96,7 @@ static PetscErrorCode CapFactorBlocks(BoltCapacitance *cap, const PetscReal B[],
       if (!(PetscAbsReal(ev[l]) > CAP_RANK_TOL * mx)) continue;
       if (kept != l)
         for (PetscInt q = 0; q < 3; q++) Qb[q + 3 * kept] = Qb[q + 3 * l];
-      inv[cap->r]  = 1.0 / ev[l];
-      at[cap->r++] = b;
+      inv[cap->r++] = 1.0 / ev[l];
       kept++;
     }
     cap->rankOf[b] = kept;
@@ -123,7 +121,7 @@ static PetscErrorCode CapFactorBlocks(BoltCapacitance *cap, const PetscReal B[],
       }
   }
   for (PetscInt i = 0; i < cap->r; i++) cap->C[i + cap->r * i] += inv[i];
-  PetscCall(PetscFree2(at, inv));
+  PetscCall(PetscFree(inv));
   *ok = PETSC_TRUE;
   if (!cap->r) PetscFunctionReturn(0);
   PetscCall(PetscBLASIntCast(cap->r, &br));
