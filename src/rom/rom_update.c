@@ -51,10 +51,9 @@ struct BoltROMUpdate_s {
   PetscInt     *act, *first, *last, *node; /* per active slot: pool slot, its element's first and last active slot, its node */
   PetscReal    *S;               /* 36 per active slot: its rows of the element's difference (3 x 12, row-major) */
   PetscReal    *C, *t, *w; /* C: S whole where it is not block-diagonal */
-  PetscBool        blocks; /* S is block-diagonal (nodal points): its system is cap's */
-  PetscReal       *B;      /* blocks: S's 3 x 3 block per slot */
-  PetscInt        *idx;    /* blocks: each column's row of G */
-  BoltCapacitance *cap;
+  PetscReal       *B;   /* S's 3 x 3 block per slot, where S is block-diagonal */
+  PetscInt        *idx; /* each column's row of G */
+  BoltCapacitance *cap; /* the system of I + S G */
   /* gathering */
   PetscReal   *send, *recv;
   PetscInt     sendAlloc, recvAlloc, recAlloc;
@@ -180,7 +179,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   BoltContactSet *c   = rom->contact;
   const PetscInt  ne = BoltContactSetElementCount(c);
   const PetscInt  n = rom->n, recLen = 3 + 36, LD = 3 * u->alloc;
-  PetscBool       ok;
+  PetscBool       ok, blocks;
   PetscInt        nsend = 0, nrec = 0, total = 0, nnew = 0, m, mine;
 
   PetscFunctionBeginUser;
@@ -264,14 +263,14 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
      element's difference touch its own node alone: S is block-diagonal, its blocks symmetric */
   for (PetscInt i = 0; i < 3 * nrec; i++) u->idx[i] = 3 * u->act[i / 3] + i % 3;
   ok        = PETSC_TRUE;
-  u->blocks = PETSC_TRUE;
-  for (PetscInt i = 0; i < nrec && u->blocks; i++)
+  blocks    = PETSC_TRUE;
+  for (PetscInt i = 0; i < nrec && blocks; i++)
     for (PetscInt p = 0; p < 3; p++)
       for (PetscInt c = 0; c < 12; c++) {
         const PetscReal *Si = &u->S[36 * i];
-        if (c / 3 == u->node[i] ? Si[12 * p + c] != Si[12 * (c % 3) + 3 * u->node[i] + p] : Si[12 * p + c] != 0) u->blocks = PETSC_FALSE;
+        if (c / 3 == u->node[i] ? Si[12 * p + c] != Si[12 * (c % 3) + 3 * u->node[i] + p] : Si[12 * p + c] != 0) blocks = PETSC_FALSE;
       }
-  if (u->blocks) {
+  if (blocks) {
     for (PetscInt i = 0; i < nrec; i++)
       for (PetscInt l = 0; l < 3; l++)
         for (PetscInt q = 0; q < 3; q++) u->B[9 * i + l + 3 * q] = u->S[36 * i + 12 * l + 3 * u->node[i] + q];
