@@ -106,7 +106,8 @@ static PetscErrorCode FOMPoolInsert(BoltFOMUpdate *u, const FOMPair *p)
    takes FOM_RANK_OTHER): the dense system of I + S G, up to 2 m^3 / 3 flops, is paid at every
    state change (two or three a step under friction) and a factorisation once per reference, so
    the state is factorised afresh once m^3 would pass a third of the factorisation's flops
-   (docs/decisions.md); and a full pool of Z (2 m columns) may take up to four times the factorisation's memory. */
+   (docs/decisions.md); and a full pool of Z (2 m columns) may take up to four times the
+   factorisation's memory. */
 #define FOM_RANK_OTHER 900
 static PetscErrorCode FOMResolveRank(BoltFOMUpdate *u, BoltDual *d)
 {

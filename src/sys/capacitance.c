@@ -75,8 +75,9 @@ static PetscBool CapIsSymmetricBlocks(PetscInt m, const PetscReal S[])
   return PETSC_TRUE;
 }
 
-/* The blocks' eigenpairs (kept ones first in Q's columns) and L^-1 + Q' G Q. */
-static PetscErrorCode CapFactorBlocks(BoltCapacitance *cap, const PetscReal B[], const PetscReal G[], PetscInt ldG, const PetscInt idx[], PetscBool *ok)
+/* The eigenpairs of the blocks that Q holds on entry (the kept eigenvectors first in each
+   block's columns), and L^-1 + Q' G Q. */
+static PetscErrorCode CapFactorBlocks(BoltCapacitance *cap, const PetscReal G[], PetscInt ldG, const PetscInt idx[], PetscBool *ok)
 {
   const PetscInt m = cap->m, k = m / 3;
   PetscReal     *inv;
@@ -88,7 +89,6 @@ static PetscErrorCode CapFactorBlocks(BoltCapacitance *cap, const PetscReal B[],
   for (PetscInt b = 0; b < k; b++) {
     PetscReal *Qb = &cap->Q[9 * b], ev[3], w16[16], mx = 0;
     PetscInt   kept = 0;
-    PetscCall(PetscArraycpy(Qb, &B[9 * b], 9));
     PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &three, Qb, &three, ev, w16, &lw, &info));
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev of a 3 x 3 block failed (%d)", (int)info);
     for (PetscInt l = 0; l < 3; l++) mx = PetscMax(mx, PetscAbsReal(ev[l]));
@@ -178,13 +178,10 @@ PetscErrorCode BoltCapacitanceFactor(BoltCapacitance *cap, PetscInt m, const Pet
   cap->m      = m;
   cap->blocks = CapIsSymmetricBlocks(m, S);
   if (cap->blocks) {
-    PetscReal *B;
-    PetscCall(PetscMalloc1(3 * m + 1, &B));
     for (PetscInt b = 0; b < m / 3; b++)
       for (PetscInt l = 0; l < 3; l++)
-        for (PetscInt q = 0; q < 3; q++) B[9 * b + l + 3 * q] = S[3 * b + l + m * (3 * b + q)];
-    PetscCall(CapFactorBlocks(cap, B, G, ldG, idx, ok));
-    PetscCall(PetscFree(B));
+        for (PetscInt q = 0; q < 3; q++) cap->Q[9 * b + l + 3 * q] = S[3 * b + l + m * (3 * b + q)];
+    PetscCall(CapFactorBlocks(cap, G, ldG, idx, ok));
   } else PetscCall(CapFactorGeneral(cap, S, G, ldG, idx, ok));
   PetscFunctionReturn(0);
 }
@@ -197,7 +194,8 @@ PetscErrorCode BoltCapacitanceFactorBlocks(BoltCapacitance *cap, PetscInt k, con
   PetscCall(CapReserve(cap, 3 * k));
   cap->m      = 3 * k;
   cap->blocks = PETSC_TRUE;
-  PetscCall(CapFactorBlocks(cap, B, G, ldG, idx, ok));
+  PetscCall(PetscArraycpy(cap->Q, B, 9 * k));
+  PetscCall(CapFactorBlocks(cap, G, ldG, idx, ok));
   PetscFunctionReturn(0);
 }
 
