@@ -21,8 +21,8 @@ The bounds are the laws':
 - the interface-reduced ROM's reduced law is a penalty law of penalty (contact_penalty_scale x
   the FOM's eps): its penetration is its traction over that penalty, bounded here by twice the
   FOM's largest compression over the same run (strict_check compression_pa).
-The ROM's nodal tractions are not in the output (its /rom/pair_force is not its force either: see
-test_rom_pair_forces_are_its_contact_forces), so its conditions are the gaps and the states.
+The ROM's nodal tractions are not in the output, so its conditions are the gaps and the states;
+its pair resultants (/rom/pair_force) are checked against the FOM's.
 """
 import json
 import re
@@ -244,20 +244,26 @@ def test_rom_accuracy_on_an_untuned_opening_scene(runs):
     assert e <= 1e-3
 
 
-@pytest.mark.xfail(strict=True, reason="the interface-reduced ROM's /rom/pair_force is computed from contact "
-                   "state arrays that are not its tractions: 0 N at the start instead of the 2 kN preload, and "
-                   "2e6 N of shear on the plates by 5 ms")
 def test_rom_pair_forces_are_its_contact_forces(runs):
-    """/rom/pair_force is documented as the force on side b of each pair: at the start (the
-    preloaded state, which the ROM takes from the FOM's) every pair's normal force is the preload,
-    as the FOM's is, and no pair's shear exceeds 10 times the 300 N load."""
+    """/rom/pair_force is the force the ROM's contact puts on side b of each pair: its frozen
+    multipliers plus its penalty on its whole gaps. At the start (the FOM's preloaded state, which
+    the ROM takes over with its tractions) every pair's force is the FOM's, to 1e-6 of the preload
+    (measured 1e-9); through the run each normal force follows the FOM's within 5 % of the FOM's
+    swing (measured 2.3 %, the plate interface), and no pair's shear exceeds 10 times the 300 N
+    load (measured 430 N). Summed from the states' arrays instead, it read 0 N at the start and
+    2e6 N of shear by 5 ms."""
     s, _, h5 = runs("opening", 1)
     with h5py.File(h5) as f:
         fom = {k: np.array(f["fom/pair_force"][k]) for k in f["fom/pair_force"]}
         rom = {k: np.array(f["rom/pair_force"][k]) for k in f["rom/pair_force"]}
     for k in fom:
         assert fom[k][0, 3] == pytest.approx(-2000, rel=1e-6)
-        assert rom[k][0, 3] == pytest.approx(fom[k][0, 3], rel=1e-3), k
+        assert np.abs(rom[k][0] - fom[k][0]).max() <= 1e-6 * 2000, k
+        swing = np.ptp(fom[k][:, 3])
+        worst = np.abs(rom[k][:, 3] - fom[k][:, 3]).max()
+        print(k, f"normal force off by {worst:.1f} N of a {swing:.0f} N swing; shear up to",
+              f"{np.hypot(rom[k][:, 0], rom[k][:, 1]).max():.0f} N")
+        assert worst <= 0.05 * swing, k
         assert np.hypot(rom[k][:, 0], rom[k][:, 1]).max() <= 3000, k
 
 

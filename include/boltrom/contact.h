@@ -123,6 +123,7 @@ PetscBool BoltContactStateHasPenaltyEnergy(const BoltContactState *);
 PetscBool BoltContactStateLambdaIsTraction(const BoltContactState *);
 /* The law's trial traction at point gp of a multiplier and a gap under the point's penalties. */
 void           BoltContactStateTrialOf(const BoltContactState *, PetscInt, const PetscReal[3], const PetscReal[3], PetscReal[3]);
+void           BoltContactStatePointPenalties(const BoltContactState *, PetscInt, PetscReal *, PetscReal *);
 /* Element e's 24x24 stiffness of its active points under the state's law. */
 PetscErrorCode BoltContactStateElementStiffness(BoltContactState *, PetscInt, PetscReal[576]);
 

@@ -90,7 +90,6 @@ struct _n_BoltContactState {
      penalties may have changed (BoltContactStateChanged): a model that caches what it derives
      from the state compares it, and every rank takes the same decision without a reduction */
   PetscObjectState version;
-  PetscBool        lambdaZero; /* the multipliers are +0 on every rank (penalty law, after an augmentation) */
 };
 
 /* A law's operations at point gp of state s (pair: the point's pair). NULL where the law has

@@ -20,6 +20,7 @@ PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[]);
 PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F);
 PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[]);
 PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[]);
+PetscErrorCode ROMPairResultants(BoltOperator *op, Vec q, PetscReal force[]);
 PetscErrorCode BoltNodePairsDirected(BoltContactSet *c, const PetscBool mask[], PetscInt nd, const PetscReal pointDir[], PetscInt *npairsOut, PetscInt **pairsOut, PetscReal **dirOut);
 PetscErrorCode BoltNodePairs(BoltContactSet *c, const PetscBool mask[], PetscInt *npairsOut, PetscInt **pairsOut);
 PetscErrorCode BoltNodePairsCombination(PetscInt npair, const PetscInt pairs[], const PetscReal dirs[], PetscInt stride, const PetscReal coef[], Vec v);
@@ -144,6 +145,12 @@ struct _n_BoltROM {
   PetscReal      *tnC, *tnK;         /* per local point: the opening test's traction is tnC + tnK g.n */
   PetscReal      *tnTau;             /* 3 per local point: scratch of tnC and tnK's tractions (grow-only) */
   PetscInt        tnTauAlloc;
+  /* the pair resultants b + A q of a penalty law (rom_pair_forces.c), made again when the version moves */
+  PetscReal      *pfLocal;           /* this rank's part of A (BOLT_PAIR_FORCE rows per pair x n, row-major), then of b */
+  PetscReal      *pfTerm;            /* 16 per local point: the multipliers, P (3 x 3) and penalties (normal, tangential) of its term in pfLocal */
+  PetscBool      *pfIn;              /* per local point: its term is in pfLocal */
+  PetscObjectState pfVersion;
+  PetscBool       pfValid;
   /* the whole gap of an open point is needed only where it closes (it sticks there): it is taken
      from the point's rows of D_e when its normal gap is within wholeGapBound x |q|_max of closing,
      a bound on the rounding between the normal row and the whole gap's normal part */

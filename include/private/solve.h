@@ -13,6 +13,7 @@ struct _n_BoltOperatorOps {
   PetscErrorCode (*heldTractions)(BoltOperator *, Vec, Vec, Vec, PetscReal, const PetscBool **, const PetscReal **); /* q, v, a, the load's amplitude -> the tractions of the points its basis ties (NULL: none), for the check */
   PetscErrorCode (*openTraction)(BoltOperator *, PetscReal[]);             /* the traction of the opening test (BoltContactStateOpenTraction) */
   PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
+  PetscErrorCode (*pairForces)(BoltOperator *, Vec, PetscReal[]);          /* optional: q -> the pair resultants (else the state's) */
   /* checkpoints: the model's vectors (named datasets) and whatever else its state holds */
   PetscErrorCode (*vectorsSave)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]);
   PetscErrorCode (*vectorsLoad)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[], PetscInt *);

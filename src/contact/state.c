@@ -330,6 +330,16 @@ void BoltContactStateTrialOf(const BoltContactState *s, PetscInt gp, const Petsc
   s->law->ops.traction(lambda, g, &s->set->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), t);
 }
 
+/* Point gp's penalties, normal and tangential (none where it slides): what its trial traction's
+   penalty part is made of. */
+void BoltContactStatePointPenalties(const BoltContactState *s, PetscInt gp, PetscReal *epsN, PetscReal *epsT)
+{
+  const PetscInt pair = s->set->elem[gp / 4].pair;
+
+  *epsN = s->epsN[pair];
+  *epsT = BoltContactStateEpsT(s, gp, pair);
+}
+
 /* Element e's stiffness block under the state's law (a model that assembles its own K_c). */
 PetscErrorCode BoltContactStateElementStiffness(BoltContactState *s, PetscInt e, PetscReal Ke[576])
 {
@@ -342,5 +352,4 @@ PetscErrorCode BoltContactStateElementStiffness(BoltContactState *s, PetscInt e,
 void BoltContactStateChanged(BoltContactState *s)
 {
   s->version++;
-  s->lambdaZero = PETSC_FALSE;
 }

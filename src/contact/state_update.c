@@ -2,48 +2,34 @@
    active-set decisions, re-closing and anchors, the multipliers the solve takes. What a point
    does under its law (trial traction, return map, re-closing) is the law's (src/contact/laws/). */
 #include "private/contact.h"
-#include <stdint.h>
-#include <string.h>
 
 /* One augmentation: lambda <- the law's trial traction at active points, 0 elsewhere. Returns
    the relative change of the multipliers and the largest violation of an active point's
-   constraint by the law's measure (its penetration, or the length of its gap where it sticks). */
+   constraint by the law's measure (its penetration, or the length of its gap where it sticks).
+   Under the penalty law the multipliers are not unknowns: they are what was given (zero, or a
+   ROM's frozen preloaded tractions, BoltROMSetPreloadState) and stay so. */
 PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange, PetscReal *maxPenetration)
 {
   BoltContactSet *c = s->set;
   PetscReal       change = 0, size = 0, nchanged = 0, pen = 0, pen2 = 0, sums[3], glob[4];
   /* with a return map the multipliers take the tractions with a penalty normal too: the sticks'
      and slips' tangential tractions are history the loop carries */
-  const PetscBool take   = (PetscBool)(s->augment || s->law->ops.returnMap);
-  PetscBool       update = take;
+  const PetscBool take = (PetscBool)(s->augment || s->law->ops.returnMap);
 
   PetscFunctionBeginUser;
-  /* the penalty law sets the multipliers to zero (no trial traction): nothing to update once
-     they are (all bits of +0 are zero) */
-  if (!update && !s->lambdaZero) {
-    uint64_t bits = 0;
-    for (PetscInt k = 0; k < 12 * c->nelem; k++) {
-      uint64_t b;
-      memcpy(&b, &s->lambda[k], sizeof(b));
-      bits |= b;
-    }
-    update = (PetscBool)(bits != 0);
-  }
   /* (sums in scalars, not in the array handed to MPI: kept in memory they stalled the loop; the
      sticking points' largest |g| as the root of the largest g.g, the same number) */
-  for (PetscInt e = 0; e < c->nelem && (update || s->augment); e++) {
+  for (PetscInt e = 0; e < c->nelem && take; e++) {
     const PetscInt pair = c->elem[e].pair;
     for (PetscInt q = 0; q < 4; q++) {
       PetscInt   gp  = 4 * e + q;
       PetscReal *lam = &s->lambda[3 * gp], t[3] = {0, 0, 0};
-      if (update) {
-        if (s->active[gp] && take) s->law->ops.trial(s, gp, pair, t);
-        for (PetscInt k = 0; k < 3; k++) {
-          change += PetscSqr(t[k] - lam[k]);
-          size += PetscSqr(t[k]);
-          if (t[k] != lam[k]) nchanged++; /* (a change below the square's underflow counts too) */
-          lam[k] = t[k];
-        }
+      if (s->active[gp]) s->law->ops.trial(s, gp, pair, t);
+      for (PetscInt k = 0; k < 3; k++) {
+        change += PetscSqr(t[k] - lam[k]);
+        size += PetscSqr(t[k]);
+        if (t[k] != lam[k]) nchanged++; /* (a change below the square's underflow counts too) */
+        lam[k] = t[k];
       }
       if (s->active[gp] && s->augment) { /* (a penalty's penetration is its law, not a violation) */
         PetscBool       squared;
@@ -57,8 +43,7 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   sums[0] = change;
   sums[1] = size;
   sums[2] = nchanged; /* the count goes with the sums */
-  /* multipliers known to be +0 everywhere stay so under the penalty law: the sums are zero */
-  if (!take && s->lambdaZero) glob[0] = glob[1] = glob[2] = 0;
+  if (!take) glob[0] = glob[1] = glob[2] = 0; /* nothing moved, on any rank */
   else PetscCall(MPIU_Allreduce(sums, glob, 3, MPIU_REAL, MPI_SUM, BoltMeshComm(c->mesh)));
   /* the penalty law has no violation to measure: zero on every rank, without asking */
   if (s->augment) PetscCall(MPIU_Allreduce(&pen, &glob[3], 1, MPIU_REAL, MPI_MAX, BoltMeshComm(c->mesh)));
@@ -66,7 +51,6 @@ PetscErrorCode BoltContactStateAugment(BoltContactState *s, PetscReal *relChange
   *relChange      = glob[1] > 0 ? PetscSqrtReal(glob[0] / glob[1]) : PetscSqrtReal(glob[0]);
   *maxPenetration = glob[3];
   if (glob[2] > 0) BoltContactStateChanged(s);
-  if (!take) s->lambdaZero = PETSC_TRUE; /* the penalty law has set them to +0 on every rank */
   PetscFunctionReturn(0);
 }
 

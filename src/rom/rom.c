@@ -131,6 +131,8 @@ PetscErrorCode ROMOnlineDestroy(BoltROM *rom)
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
   PetscCall(PetscFree(rom->tnTau)); /* grown one by one, freed alone */
   rom->tnTauAlloc = 0;
+  PetscCall(PetscFree3(rom->pfLocal, rom->pfTerm, rom->pfIn));
+  rom->pfValid = PETSC_FALSE;
   PetscCall(BoltExactSumDestroy(&rom->sum));
   PetscCall(BoltROMUpdateDestroy(&rom->update));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));
@@ -220,6 +222,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_FORCES, (void (*)(void))ROMContactForces));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_STIFFNESS, (void (*)(void))ROMContactStiffness));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_PROBE, (void (*)(void))ROMProbe));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_PAIR_FORCES, (void (*)(void))ROMPairResultants));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_VECTORS_SAVE, (void (*)(void))ROMVectorsSave));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_VECTORS_LOAD, (void (*)(void))ROMVectorsLoad));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_STATE_SAVE, (void (*)(void))ROMStateSave));

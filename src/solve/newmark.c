@@ -318,7 +318,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
   PetscCall(BoltNewmarkProductsFresh(nm));
   PetscCall(BoltNewmarkEnergy(nm, 0.0, &nm->energy[0], &ek, &es));
   PetscCall(BoltNewmarkLedger(nm, 0, 0, 0, ek, es));
-  if (BoltContactSetPairCount(op->contact)) PetscCall(BoltContactStatePairForces(op->state, nm->pairForce));
+  if (BoltContactSetPairCount(op->contact)) PetscCall(BoltOperatorPairForces(op, nm->q, nm->pairForce));
   if (BoltContactStateHasFriction(op->state)) { /* the pairs the preload left slipping */
     PetscInt nslip;
     PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));
@@ -367,7 +367,7 @@ PetscErrorCode BoltNewmarkRun(BoltNewmark *nm)
     PetscCall(BoltNewmarkEnergy(nm, amp, &nm->energy[n], &ek, &es));
     PetscCall(VecWAXPY(nm->dq, -1.0, qOld, nm->q));
     PetscCall(BoltNewmarkLedger(nm, n, BoltLoadAmplitude(nm, t - nm->dt), amp, ek, es));
-    if (BoltContactSetPairCount(op->contact)) PetscCall(BoltContactStatePairForces(op->state, &nm->pairForce[BOLT_PAIR_FORCE * BoltContactSetPairCount(op->contact) * n]));
+    if (BoltContactSetPairCount(op->contact)) PetscCall(BoltOperatorPairForces(op, nm->q, &nm->pairForce[BOLT_PAIR_FORCE * BoltContactSetPairCount(op->contact) * n]));
     if (BoltContactStateHasFriction(op->state)) {
       PetscInt nslip;
       PetscCall(BoltContactStateCountReclosed(op->state, &nslip, NULL));

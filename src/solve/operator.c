@@ -91,6 +91,7 @@ PetscErrorCode BoltOperatorSetOperation(BoltOperator *op, BoltOperatorOp which, 
   case BOLT_OP_CONTACT_GAPS: op->ops.contactGaps = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal[]))fn; break;
   case BOLT_OP_OPEN_TRACTION: op->ops.openTraction = (PetscErrorCode(*)(BoltOperator *, PetscReal[]))fn; break;
   case BOLT_OP_PROBE: op->ops.probe = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal *))fn; break;
+  case BOLT_OP_PAIR_FORCES: op->ops.pairForces = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal[]))fn; break;
   case BOLT_OP_VECTORS_SAVE: op->ops.vectorsSave = (PetscErrorCode(*)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]))fn; break;
   case BOLT_OP_VECTORS_LOAD: op->ops.vectorsLoad = (PetscErrorCode(*)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[], PetscInt *))fn; break;
   case BOLT_OP_STATE_SAVE: op->ops.stateSave = (PetscErrorCode(*)(BoltOperator *, PetscViewer))fn; break;
@@ -119,6 +120,14 @@ PetscErrorCode BoltOperatorContactStiffness(BoltOperator *op, Mat *Kc)
 PetscErrorCode BoltOperatorProbe(BoltOperator *op, Vec q, PetscReal *value)
 {
   return (*op->ops.probe)(op, q, value);
+}
+
+/* Each pair's resultant at q (BOLT_PAIR_FORCE values per pair, collective): the model's own, or
+   the state's sum over its points. */
+PetscErrorCode BoltOperatorPairForces(BoltOperator *op, Vec q, PetscReal force[])
+{
+  if (op->ops.pairForces) return (*op->ops.pairForces)(op, q, force);
+  return BoltContactStatePairForces(op->state, force);
 }
 
 /* The model's context (its implementation's data) and what the others read of it. */
