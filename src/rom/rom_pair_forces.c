@@ -8,12 +8,13 @@
    per pair instead of a pass over every contact point. */
 #include "private/rom.h"
 
-/* Whether the resultants are affine in q: a penalty law without return maps (the strict and
-   stick laws' interface-reduced ROM). Elsewhere the multipliers are the tractions (augmented
-   ROMs, friction), and the state's own sum over its points is the model's force. */
+/* Whether the resultants are affine in q: the penalty law without friction (the strict and
+   stick laws' interface-reduced ROM), whose multipliers are given, not tractions. Elsewhere
+   (augmented ROMs, friction) the multipliers are the tractions, and the state's own sum over its
+   points is the model's force. */
 static PetscBool ROMPairForcesAffine(BoltContactState *s)
 {
-  return (PetscBool)(!BoltContactStateLambdaIsTraction(s) && !BoltContactStateHasFriction(s) && !BoltContactStateAugmented(s));
+  return (PetscBool)(!BoltContactStateHasFriction(s) && !BoltContactStateAugmented(s));
 }
 
 /* Adds sign times point gp's term to the local A and b: its force multipliers t0, and its
