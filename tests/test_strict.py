@@ -201,7 +201,8 @@ def test_rom_where_pairs_close_again_same_on_1_and_2_ranks(joint_small, tmp_path
     history up to round-off (which the near-hard penalty lifts to about 1e-7 of the response).
     Per solve the ROM takes only the gaps a decision reads (not the held points', and an open
     point's whole gap only near closing, where it becomes the anchor); taking every gap at every
-    solve gives the same bits."""
+    solve gives the same bits, and so does testing every point at every solve where the rows prove
+    that no point would change."""
     mesh, _ = joint_small
     rom_file = tmp_path / "r.rom.h5"
     scene = SCENE + STRICT + ["-mesh", mesh, "-fom", "false", "-rom", "true", "-rom_file", str(rom_file),
@@ -216,6 +217,8 @@ def test_rom_where_pairs_close_again_same_on_1_and_2_ranks(joint_small, tmp_path
             hist[name] = np.array(f["rom/probe"])
     assert np.array_equal(hist["r1"], hist["r2"])
     assert np.array_equal(hist["r1"], hist["everywhere"]) and summ["r1"]["held_points"] == 1
+    assert summ["r1"]["set_updates_proved_unchanged"] > 0
+    assert summ["everywhere"]["set_updates_proved_unchanged"] == 0
     assert summ["r1"]["low_rank_updates"] > 50 and summ["refactor"]["low_rank_updates"] == 0
     assert summ["r1"]["factorizations"] < summ["refactor"]["factorizations"] / 5
     assert summ["r1"]["solves"] == summ["refactor"]["solves"]  # the same decisions

@@ -102,7 +102,7 @@ PetscErrorCode BoltContactStateCountReclosed(BoltContactState *, PetscInt *, Pet
 PetscErrorCode BoltContactStateReleaseStiffness(BoltContactState *);
 PetscErrorCode BoltContactStateComplementarity(BoltContactState *, PetscReal *, PetscReal *, PetscReal *, PetscReal *);
 /* state_check.c: every point checked from raw gaps computed at every point */
-PetscErrorCode BoltContactStateCheck(BoltContactState *, const PetscReal[], const PetscBool[], const PetscReal[], PetscReal[3], PetscInt *);
+PetscErrorCode BoltContactStateCheck(BoltContactState *, const PetscReal[], const PetscBool[], const PetscReal[], const PetscReal[], PetscReal[3], PetscInt *);
 #define BOLT_CONTACT_PACK 108 /* values per element of BoltContactStatePack */
 void           BoltContactStatePack(BoltContactState *, PetscInt, PetscReal[]);
 void           BoltContactStateUnpack(BoltContactState *, PetscInt, const PetscReal[]);
@@ -176,6 +176,7 @@ const PetscReal *BoltContactStateElementBlocks(const BoltContactState *);
 PetscInt BoltContactStateActiveCount(const BoltContactState *);
 PetscBool BoltContactStateAugmented(const BoltContactState *);
 PetscObjectState BoltContactStateVersion(const BoltContactState *);
+PetscBool        BoltContactStateSettled(const BoltContactState *);
 const PetscBool *BoltContactStateMayChange(const BoltContactState *);
 PetscReal BoltContactStateFrictionChange(const BoltContactState *);
 PetscBool BoltContactStateCloseOnly(const BoltContactState *);

@@ -14,7 +14,7 @@ PetscErrorCode BoltOperatorCreate(MPI_Comm, const char[], BoltContactSet *, Bolt
 PetscErrorCode BoltOperatorSetSystem(BoltOperator *, Mat, Mat, Mat, Vec, Vec);
 PetscErrorCode BoltOperatorSetDamping(BoltOperator *, Mat, PetscReal, PetscReal);
 PetscErrorCode BoltOperatorSetRigidStiffness(BoltOperator *, Mat);
-typedef enum { BOLT_OP_CONTACT_DISPLACEMENTS, BOLT_OP_CONTACT_FORCES, BOLT_OP_CONTACT_STIFFNESS, BOLT_OP_CONTACT_GAPS, BOLT_OP_OPEN_TRACTION, BOLT_OP_PROBE, BOLT_OP_VECTORS_SAVE, BOLT_OP_VECTORS_LOAD, BOLT_OP_STATE_SAVE, BOLT_OP_STATE_LOAD, BOLT_OP_VIEW, BOLT_OP_DESTROY, BOLT_OP_FACTOR, BOLT_OP_SOLVE, BOLT_OP_HELD_TRACTIONS, BOLT_OP_PAIR_FORCES } BoltOperatorOp;
+typedef enum { BOLT_OP_CONTACT_DISPLACEMENTS, BOLT_OP_CONTACT_FORCES, BOLT_OP_CONTACT_STIFFNESS, BOLT_OP_CONTACT_GAPS, BOLT_OP_OPEN_TRACTION, BOLT_OP_PROBE, BOLT_OP_VECTORS_SAVE, BOLT_OP_VECTORS_LOAD, BOLT_OP_STATE_SAVE, BOLT_OP_STATE_LOAD, BOLT_OP_VIEW, BOLT_OP_DESTROY, BOLT_OP_FACTOR, BOLT_OP_SOLVE, BOLT_OP_HELD_TRACTIONS, BOLT_OP_PAIR_FORCES, BOLT_OP_SET_KEPT, BOLT_OP_CHECK_GAPS, BOLT_OP_CHECK_TRACTION } BoltOperatorOp;
 PetscErrorCode    BoltOperatorSetOperation(BoltOperator *, BoltOperatorOp, void (*)(void));
 PetscErrorCode    BoltOperatorSetSolver(BoltOperator *, const char[], MatSolverType, PetscBool, PetscBool);
 PetscErrorCode    BoltOperatorGetSolver(BoltOperator *, const char *[], MatSolverType *);
@@ -23,6 +23,8 @@ PetscErrorCode    BoltOperatorCopyLoads(BoltOperator *, Vec, Vec);
 PetscErrorCode    BoltOperatorContactDisplacements(BoltOperator *, Vec);
 PetscErrorCode    BoltOperatorContactStiffness(BoltOperator *, Mat *);
 PetscErrorCode    BoltOperatorProbe(BoltOperator *, Vec, PetscReal *);
+PetscErrorCode    BoltOperatorMult(BoltOperator *, PetscInt, Vec, Vec);
+PetscErrorCode    BoltOperatorSetDiagonalProducts(BoltOperator *);
 PetscErrorCode    BoltOperatorPairForces(BoltOperator *, Vec, PetscReal[]);
 void             *BoltOperatorContext(BoltOperator *);
 BoltContactState *BoltOperatorState(BoltOperator *);

@@ -90,6 +90,7 @@ struct _n_BoltContactState {
      penalties may have changed (BoltContactStateChanged): a model that caches what it derives
      from the state compares it, and every rank takes the same decision without a reduction */
   PetscObjectState version;
+  PetscInt         unchangedUpdates; /* set updates in a row that changed nothing, none of the state changed since */
 };
 
 /* A law's operations at point gp of state s (pair: the point's pair). NULL where the law has

@@ -19,7 +19,12 @@ PetscErrorCode ROMContactStiffness(BoltOperator *op, Mat *Kc);
 PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[]);
 PetscErrorCode ROMContactForces(BoltOperator *op, const PetscReal lambda[], Vec F);
 PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[]);
+PetscErrorCode ROMCheckGaps(BoltOperator *op, Vec q, PetscReal gap[]);
 PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[]);
+PetscErrorCode ROMSetKept(BoltOperator *op, PetscBool *kept);
+PetscBool      ROMSetKeptApplies(BoltROM *rom, BoltContactState *s);
+PetscBool      ROMOpenTractionAffine(BoltROM *rom, BoltContactState *s);
+PetscErrorCode ROMCheckTraction(BoltOperator *op, const PetscReal gap[], PetscReal tn[]);
 PetscErrorCode ROMPairResultants(BoltOperator *op, Vec q, PetscReal force[]);
 PetscErrorCode BoltNodePairsDirected(BoltContactSet *c, const PetscBool mask[], PetscInt nd, const PetscReal pointDir[], PetscInt *npairsOut, PetscInt **pairsOut, PetscReal **dirOut);
 PetscErrorCode BoltNodePairs(BoltContactSet *c, const PetscBool mask[], PetscInt *npairsOut, PetscInt **pairsOut);
@@ -155,6 +160,13 @@ struct _n_BoltROM {
      from the point's rows of D_e when its normal gap is within wholeGapBound x |q|_max of closing,
      a bound on the rounding between the normal row and the whole gap's normal part */
   PetscReal      *wholeGapBound;     /* per local point */
+  PetscReal       gapsXmax;          /* |q|_max of the last gaps that needed it (whole gaps near closing) */
+  /* the proof that no point changes (ROMSetKept): while every live normal row's gap lies in its
+     interval keptLo + keptCoef |q|_max < g < keptHi, every point keeps its state */
+  PetscReal      *keptLo, *keptHi, *keptCoef; /* per gap row */
+  PetscBool       keptNever;         /* some local point's state would change whatever its gap */
+  PetscObjectState keptVersion;
+  PetscBool       keptValid;
   BoltContactSet *contact;
   BV              rigid;         /* offline: a free model's rigid motions (mass-orthonormal, the FOM's layout), NULL if held */
   PetscInt        nRigid;        /* rigid motions appended to the basis (6 free-free, else 0) */

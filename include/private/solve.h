@@ -10,8 +10,11 @@ struct _n_BoltOperatorOps {
   PetscErrorCode (*contactStiffness)(BoltOperator *, Mat *);               /* K_c of the active set */
   /* optional, else from contactDisplacements and the state's own computation: */
   PetscErrorCode (*contactGaps)(BoltOperator *, Vec, PetscReal[]);         /* q -> the gaps at the local contact points */
+  PetscErrorCode (*checkGaps)(BoltOperator *, Vec, PetscReal[]);           /* q -> the gaps at every local point, held ones included (the check) */
+  PetscErrorCode (*checkTraction)(BoltOperator *, const PetscReal[], PetscReal[]); /* anchored gaps -> the opening test's traction at every local point (the check; else the state's) */
   PetscErrorCode (*heldTractions)(BoltOperator *, Vec, Vec, Vec, PetscReal, const PetscBool **, const PetscReal **); /* q, v, a, the load's amplitude -> the tractions of the points its basis ties (NULL: none), for the check */
   PetscErrorCode (*openTraction)(BoltOperator *, PetscReal[]);             /* the traction of the opening test (BoltContactStateOpenTraction) */
+  PetscErrorCode (*setKept)(BoltOperator *, PetscBool *);                  /* collective: whether the last contactGaps prove that no point's state would change */
   PetscErrorCode (*probe)(BoltOperator *, Vec, PetscReal *);
   PetscErrorCode (*pairForces)(BoltOperator *, Vec, PetscReal[]);          /* optional: q -> the pair resultants (else the state's) */
   /* checkpoints: the model's vectors (named datasets) and whatever else its state holds */
@@ -34,6 +37,7 @@ struct BoltOperator_s {
   PetscBool         keepStructural; /* the dual loop keeps K + a1 M + a4 C summed for its factorisations (small dense matrices: the ROM) */
   char              prefix[16]; /* options prefix of its solver: fom_ or rom_ */
   Mat               M, C, K;
+  Vec               Mdiag, Kdiag;  /* the diagonals of M and K in modal coordinates (a reduced basis): their products are pointwise */
   Mat               Krigid;        /* added to K in static solves only: a free ROM's stiffness on its rigid motions (BoltOperatorSetRigidStiffness) */
   PetscReal         rayleigh[2];   /* C = rayleigh[0] M + rayleigh[1] K (BoltOperatorSetDamping) */
   Vec               load, preload; /* external load pattern and preload, in its coordinates */
@@ -96,6 +100,7 @@ struct BoltDual_s {
   PetscReal      *cgR, *cgP, *cgAp; /* CG residual (gaps), direction, its gaps; 3 per Gauss point */
   /* counters and phase times (the paper's Table 2) */
   PetscInt        factorizations, updates, solves, outerTotal, innerTotal, outerMax, innerMax, cycles, failures;
+  PetscInt        keptUpdates; /* set updates the model proved to change nothing (BoltDualUpdateActive), of the transient */
   PetscReal       tContactStiffness, tDisplacements, tContactForces;
   PetscReal       lastChange, lastPenetration; /* of the last inner iteration */
   /* strict law: the worst converged state so far (BoltContactStateComplementarity) */
@@ -106,6 +111,7 @@ struct BoltDual_s {
   PetscInt        checkEvery, checkSteps, checkLeaving, checkFirstStep;
   PetscReal       checkFirstTime;
   PetscReal      *checkGaps; /* 3 per local point */
+  PetscReal      *checkAnchored, *checkTn; /* 3 and 1 per local point: the check's anchored gaps and tractions, where the model gives them */
 };
 
 struct _n_BoltNewmark {

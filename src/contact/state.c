@@ -352,4 +352,15 @@ PetscErrorCode BoltContactStateElementStiffness(BoltContactState *s, PetscInt e,
 void BoltContactStateChanged(BoltContactState *s)
 {
   s->version++;
+  s->unchangedUpdates = 0;
+}
+
+/* Whether the point-by-point update may be skipped where a model proves that no point would
+   change (BoltDualUpdateActive): after two updates in a row that changed nothing, with nothing of
+   the state changed since, the sets of the last two iterations equal the current one, so an
+   update that changes nothing leaves the state exactly as it is. Not with return maps (they move
+   multipliers at every update) nor with a held set. */
+PetscBool BoltContactStateSettled(const BoltContactState *s)
+{
+  return (PetscBool)(s->unchangedUpdates >= 2 && !s->holdContact && !s->law->ops.returnMap && !s->law->ops.returnChange);
 }

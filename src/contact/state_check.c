@@ -11,11 +11,14 @@
    state the law would change: an open one that penetrates beyond the activation gap, a closed one
    in tension beyond its pair's band, a sticking one outside its Coulomb cone. tied (or NULL)
    marks the points whose traction is given in tTied (3 each), a reduced model's ties': their
-   gaps cannot show it. Collective. */
-PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[], const PetscBool tied[], const PetscReal tTied[], PetscReal worst[3], PetscInt *leaving)
+   gaps cannot show it. tnGiven (or NULL) is the opening test's traction at every point, where the
+   model has it in a closed form (a reduced model's); without friction it is all the check reads
+   of the tractions. Collective. */
+PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[], const PetscBool tied[], const PetscReal tTied[], const PetscReal tnGiven[], PetscReal worst[3], PetscInt *leaving)
 {
   BoltContactSet *c   = s->set;
   const PetscInt  ngp = 4 * c->nelem;
+  const PetscBool friction = BoltContactStateHasFriction(s), given = (PetscBool)(tnGiven && !friction);
   PetscReal      *g, *t, *tn, loc[3] = {0, 0, 0};
   PetscInt        nloc = 0;
 
@@ -23,7 +26,7 @@ PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[]
   PetscCall(PetscMalloc3(3 * ngp + 1, &g, 3 * ngp + 1, &t, ngp + 1, &tn));
   PetscCall(PetscArraycpy(g, graw, 3 * ngp));
   BoltContactStateAnchorGaps(s, g);
-  for (PetscInt gp = 0; gp < ngp; gp++) {
+  for (PetscInt gp = 0; gp < ngp && !given; gp++) {
     const PetscInt pair = c->elem[gp / 4].pair;
     PetscReal     *tp   = &t[3 * gp];
     if (!s->active[gp]) tp[0] = tp[1] = tp[2] = 0;
@@ -31,7 +34,8 @@ PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[]
     else if (BoltContactStateLambdaIsTraction(s)) PetscCall(PetscArraycpy(tp, &s->lambda[3 * gp], 3));
     else s->law->ops.traction(&s->lambda[3 * gp], &g[3 * gp], &c->gpNormal[3 * gp], s->epsN[pair], BoltContactStateEpsT(s, gp, pair), tp);
   }
-  PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, t, tn));
+  if (given) PetscCall(PetscArraycpy(tn, tnGiven, ngp));
+  else PetscCall(BoltContactSetSmoothedNormalTraction(c, s->work, t, tn));
   for (PetscInt gp = 0; gp < ngp; gp++) {
     const PetscInt   pair = c->elem[gp / 4].pair;
     const PetscReal *n = &c->gpNormal[3 * gp], *gr = &graw[3 * gp], *tp = &t[3 * gp];
@@ -41,13 +45,14 @@ PetscErrorCode BoltContactStateCheck(BoltContactState *s, const PetscReal graw[]
       loc[0] = PetscMax(loc[0], -gn);
       if (held && -gn > s->activationGap) nloc++;
     } else {
-      const PetscReal tnp = tp[0] * n[0] + tp[1] * n[1] + tp[2] * n[2];
-      PetscReal       tt  = 0;
-      loc[1]              = PetscMax(loc[1], tn[gp]);
+      loc[1] = PetscMax(loc[1], tn[gp]);
       if (held && tn[gp] > s->bandTraction[pair]) nloc++;
-      for (PetscInt k = 0; k < 3; k++) tt += PetscSqr(tp[k] - tnp * n[k]);
-      if (BoltContactStateHasFriction(s) && tnp < 0 && c->friction[pair] > 0) {
-        const PetscReal excess = PetscSqrtReal(tt) / (c->friction[pair] * -tnp) - 1;
+      if (friction && c->friction[pair] > 0) {
+        const PetscReal tnp = tp[0] * n[0] + tp[1] * n[1] + tp[2] * n[2];
+        PetscReal       tt  = 0, excess;
+        for (PetscInt k = 0; k < 3; k++) tt += PetscSqr(tp[k] - tnp * n[k]);
+        if (!(tnp < 0)) continue;
+        excess = PetscSqrtReal(tt) / (c->friction[pair] * -tnp) - 1;
         loc[2] = PetscMax(loc[2], excess);
         if (held && excess > PETSC_SQRT_MACHINE_EPSILON) nloc++; /* a held stick that would slip */
       }

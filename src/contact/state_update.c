@@ -174,49 +174,58 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
   const PetscBool complementarity = BoltContactStateIsComplementarity(s);
   PetscInt        loc[3] = {0, 0, 0}, glob[3];
   PetscReal       fric = 0, press = 0;
+  /* the loop's invariants in locals: read through s they would be loaded again after every store
+     into the state's arrays, and the loop runs over every point at every solve */
+  PetscBool       *active = s->active, *activeOld = s->activeOld, *activeOlder = s->activeOlder, *dirty = s->dirty;
+  const PetscBool *released = s->released, *mayChange = s->mayChange;
+  const PetscReal *gap = s->gap, *normal = c->gpNormal;
+  const PetscBool  holdAll = s->holdContact, closeOnly = s->closeOnly;
+  const PetscReal  activationGap = s->activationGap;
+  PetscBool (*returnMap)(BoltContactState *, PetscInt, PetscInt, PetscReal *, PetscReal *) = s->law->ops.returnMap;
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->nelem; e++) {
-    const PetscInt pair = c->elem[e].pair;
+    const PetscInt  pair = c->elem[e].pair;
+    const PetscReal band = s->bandTraction[pair];
     for (PetscInt q = 0; q < 4; q++) {
-      PetscInt  gp = 4 * e + q;
-      PetscBool now;
+      const PetscInt  gp   = 4 * e + q;
+      const PetscBool mayNot = (PetscBool)(mayChange && !mayChange[gp]), was = active[gp];
+      PetscBool       now;
       /* A band of width activationGap (or the traction bandTraction) around zero keeps
          points at the edge of the contact zone, whose gaps and tractions are at round-off
          level, from chattering between the sets: a closed point opens when its traction is
          tensile beyond the band, an open point closes when it penetrates beyond it. */
-      {
-        const PetscReal *g = &s->gap[3 * gp], *n = &c->gpNormal[3 * gp];
-        const PetscReal  band = s->bandTraction[pair];
-        if ((s->mayChange && !s->mayChange[gp]) || s->holdContact) now = s->active[gp];
-        else if (s->active[gp]) now = (s->closeOnly || tnOpen[gp] < band) ? PETSC_TRUE : PETSC_FALSE;
-        else now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > s->activationGap ? PETSC_TRUE : PETSC_FALSE;
+      if (mayNot || holdAll) now = was;
+      else if (was) now = (closeOnly || tnOpen[gp] < band) ? PETSC_TRUE : PETSC_FALSE;
+      else {
+        const PetscReal *g = &gap[3 * gp], *n = &normal[3 * gp];
+        now = -(g[0] * n[0] + g[1] * n[1] + g[2] * n[2]) > activationGap ? PETSC_TRUE : PETSC_FALSE;
       }
-      s->activeOlder[gp] = s->activeOld[gp];
-      s->activeOld[gp]   = s->active[gp];
-      if (s->law->ops.returnMap && now && s->active[gp] && !(s->mayChange && !s->mayChange[gp])) {
+      activeOlder[gp] = activeOld[gp];
+      activeOld[gp]   = was;
+      if (returnMap && now && was && !mayNot) {
         PetscReal moved, pressure;
-        if (s->law->ops.returnMap(s, gp, pair, &moved, &pressure)) {
+        if (returnMap(s, gp, pair, &moved, &pressure)) {
           loc[0]++;
           loc[2]++; /* a change of stick and slip is not a two-set cycle of the open and closed sets */
-          s->dirty[e] = PETSC_TRUE;
+          dirty[e] = PETSC_TRUE;
         }
         fric  = PetscMax(fric, moved);
         press = PetscMax(press, pressure); /* the pressure scale of the return maps' convergence test */
       }
       /* a sticking pair that opened and now closes to slide is in a new state, not a cycle */
-      if (complementarity && now && !s->active[gp] && !s->released[gp]) loc[2]++;
-      if (now != s->active[gp]) {
+      if (complementarity && now && !was && !released[gp]) loc[2]++;
+      if (now != was) {
         loc[0]++;
-        s->dirty[e] = PETSC_TRUE;
+        dirty[e] = PETSC_TRUE;
         if (!now) {
           s->lambda[3 * gp] = s->lambda[3 * gp + 1] = s->lambda[3 * gp + 2] = 0;
           if (s->law->ops.open) s->law->ops.open(s, gp);
         } else BoltContactStateReclose(s, gp);
       }
-      s->active[gp] = now;
+      active[gp] = now;
       if (now) loc[1]++;
-      if (now != s->activeOlder[gp]) loc[2]++;
+      if (now != activeOlder[gp]) loc[2]++;
     }
   }
   PetscCall(MPIU_Allreduce(loc, glob, 3, MPIU_INT, MPI_SUM, BoltMeshComm(c->mesh)));
@@ -224,6 +233,7 @@ PetscErrorCode BoltContactStateUpdateActive(BoltContactState *s, const PetscReal
   *nchanged  = glob[0];
   s->nactive = glob[1];
   if (glob[0] || s->law->ops.returnMap) BoltContactStateChanged(s); /* the return maps move multipliers */
+  else s->unchangedUpdates++;
   /* once points only close (anti-cycling) the set grows and cannot cycle: a return to the set of
      two iterations back is then the points opened just before closing again */
   *cycling   = (!s->closeOnly && glob[0] > 0 && glob[2] == 0) ? PETSC_TRUE : PETSC_FALSE;

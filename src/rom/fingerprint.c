@@ -9,7 +9,7 @@
 
 /* Bumped when the recipe of the basis or the fields of the file change, so that an older file is
    refused by its format, not by a field it could not have had. */
-#define BOLT_ROM_FORMAT 12
+#define BOLT_ROM_FORMAT 13
 
 static PetscErrorCode FileHash(MPI_Comm comm, const char path[], unsigned long long *hash)
 {

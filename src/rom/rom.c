@@ -129,6 +129,7 @@ PetscErrorCode ROMOnlineDestroy(BoltROM *rom)
   rom->kcrSendAlloc = rom->kcrRecvAlloc = rom->kcrDTAlloc = 0; /* a later operator grows them afresh */
   PetscCall(PetscFree4(rom->gpRows, rom->tnC, rom->tnK, rom->wholeGapBound));
   PetscCall(PetscFree2(rom->Rn, rom->gnRow));
+  PetscCall(PetscFree3(rom->keptLo, rom->keptHi, rom->keptCoef));
   PetscCall(PetscFree(rom->tnTau)); /* grown one by one, freed alone */
   rom->tnTauAlloc = 0;
   PetscCall(PetscFree3(rom->pfLocal, rom->pfTerm, rom->pfIn));
@@ -197,6 +198,27 @@ static PetscErrorCode ROMRigidStiffness(BoltROM *rom, Mat *P)
   PetscFunctionReturn(0);
 }
 
+/* Whether A is diagonal up to rounding: its largest entry off the diagonal at most 1e-8 of its
+   largest one (a modal basis: measured 1e-15 and below). */
+static PetscErrorCode ROMModal(Mat A, PetscReal *offRel)
+{
+  const PetscScalar *a;
+  PetscInt           n;
+  PetscReal          dmax = 0, off = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetSize(A, &n, NULL));
+  PetscCall(MatDenseGetArrayRead(A, &a));
+  for (PetscInt j = 0; j < n; j++)
+    for (PetscInt i = 0; i < n; i++) {
+      if (i == j) dmax = PetscMax(dmax, PetscAbsScalar(a[i + n * j]));
+      else off = PetscMax(off, PetscAbsScalar(a[i + n * j]));
+    }
+  PetscCall(MatDenseRestoreArrayRead(A, &a));
+  *offRel = dmax > 0 ? off / dmax : 0;
+  PetscFunctionReturn(0);
+}
+
 /* The ROM's operator: its matrices, and its own contact state with the ROM's law, penalties and
    opening band. */
 PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
@@ -211,6 +233,13 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltContactStateSetAugment(BoltOperatorState(op), rom->augment)); /* -rom_contact_augment */
   PetscCall(BoltOperatorSetSystem(op, rom->Mr, NULL, rom->Kr, rom->loadr, rom->preloadr));
   PetscCall(BoltOperatorSetDamping(op, rom->Cr, rom->rayleigh[0], rom->rayleigh[1]));
+  { /* the basis is modal (reduction.c): the integrator's products are pointwise */
+    PetscReal offM, offK;
+    PetscCall(ROMModal(rom->Mr, &offM));
+    PetscCall(ROMModal(rom->Kr, &offK));
+    PetscCheck(offM <= 1e-8 && offK <= 1e-8, rom->comm, PETSC_ERR_PLIB, "ROM: its basis is not modal: M_r and K_r are off their diagonals by %g and %g of their largest entries", (double)offM, (double)offK);
+    PetscCall(BoltOperatorSetDiagonalProducts(op));
+  }
   if (BoltMeshIsFree(BoltContactSetMesh(rom->contact))) {
     Mat P;
     PetscCall(ROMRigidStiffness(rom, &P));
@@ -234,7 +263,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   if (!rom->Kcr) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &rom->Kcr));
   if (!rom->sum) PetscCall(BoltExactSumCreate(&rom->sum));
   PetscCall(MatZeroEntries(rom->Kcr));
-  rom->KcrValid = rom->FrValid = rom->tnValid = PETSC_FALSE; /* a new state: its versions start afresh */
+  rom->KcrValid = rom->FrValid = rom->tnValid = rom->keptValid = PETSC_FALSE; /* a new state: its versions start afresh */
   PetscCall(PetscFree(rom->Ke));
   PetscCall(PetscCalloc1(144 * BoltContactSetElementCount(rom->contact) + 1, &rom->Ke));
   PetscCall(PetscFree5(rom->work, rom->work2, rom->dK, rom->packed, rom->Fr));
@@ -264,7 +293,10 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltContactStateSetMayChange(BoltOperatorState(op), ((rom->opt.trained && rom->marked) || (rom->holdUnmarked && rom->marked && rom->nOpeningPairs > 0 && !rom->augment)) ? rom->marked : NULL));
   PetscCall(ROMSetUpGapRows(rom, BoltContactStateMayChange(BoltOperatorState(op))));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CONTACT_GAPS, (void (*)(void))ROMContactGaps));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CHECK_GAPS, rom->augment ? NULL : (void (*)(void))ROMCheckGaps));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_OPEN_TRACTION, (void (*)(void))ROMOpenTraction));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CHECK_TRACTION, ROMOpenTractionAffine(rom, BoltOperatorState(op)) ? (void (*)(void))ROMCheckTraction : NULL));
+  PetscCall(BoltOperatorSetOperation(op, BOLT_OP_SET_KEPT, ROMSetKeptApplies(rom, BoltOperatorState(op)) ? (void (*)(void))ROMSetKept : NULL));
   if (rom->tie) PetscCall(BoltOperatorSetOperation(op, BOLT_OP_HELD_TRACTIONS, (void (*)(void))ROMHeldTractions));
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
   PetscCall(ROMSetUpPairForces(rom, BoltContactStateMayChange(BoltOperatorState(op))));

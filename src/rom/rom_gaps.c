@@ -49,6 +49,7 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   rom->heldRowsDone = PETSC_TRUE;
   whole = (PetscBool)(BoltContactSetIsComplementarity(c) && BoltContactSetReanchor(c) && !rom->wholeRows && quadrature == BOLT_QUADRATURE_NODAL);
   for (PetscInt j = 0; j < rom->n && whole; j++) xmax = PetscMax(xmax, PetscAbsReal(PetscRealPart(x[j])));
+  rom->gapsXmax = xmax;
   for (PetscInt gp = 0; gp < ngp; gp++) {
     const PetscInt  *r = &rom->gpRows[4 * gp];
     const PetscReal *N = &gpN[4 * gp], *n = &gpNormal[3 * gp]; /* gpN: 4 per point */
@@ -83,53 +84,173 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   PetscFunctionReturn(0);
 }
 
+/* Whether the opening test's traction is affine in the point's normal gap (ROMOpenTraction). */
+PetscBool ROMOpenTractionAffine(BoltROM *rom, BoltContactState *s)
+{
+  return (PetscBool)!(BoltContactStateAugmented(s) || BoltContactStateHasFriction(s) || (BoltContactStateOpenTest(s) == BOLT_OPEN_NODAL && !(BoltContactSetQuadrature(rom->contact) == BOLT_QUADRATURE_NODAL && rom->flat)));
+}
+
+/* tnC and tnK of ROMOpenTraction, made again (collectively) when the state's version moves. */
+static PetscErrorCode ROMOpenTractionTerms(BoltROM *rom, BoltContactState *s)
+{
+  BoltContactSet  *c   = rom->contact;
+  const PetscInt   ngp = 4 * BoltContactSetElementCount(c);
+  const PetscReal *gpNormal = BoltContactSetNormals(c);
+  PetscReal       *tau; /* 3 per point: the tractions whose normal part is wanted */
+
+  PetscFunctionBeginUser;
+  if (rom->tnValid && rom->tnVersion == BoltContactStateVersion(s)) PetscFunctionReturn(0);
+  PetscCall(BoltGrowReal(&rom->tnTau, &rom->tnTauAlloc, 3 * ngp + 1));
+  tau = rom->tnTau;
+  for (PetscInt pass = 0; pass < 2; pass++) {
+    PetscReal       *out    = pass ? rom->tnK : rom->tnC;
+    const PetscBool *active = BoltContactStateActive(s);
+    const PetscReal *lambda = BoltContactStateLambda(s);
+    for (PetscInt gp = 0; gp < ngp; gp++) {
+      const PetscReal *n    = &gpNormal[3 * gp], zero[3] = {0, 0, 0};
+      PetscReal       *t    = &tau[3 * gp];
+      if (!active[gp]) t[0] = t[1] = t[2] = 0;
+      else if (!pass) PetscCall(PetscArraycpy(t, &lambda[3 * gp], 3));
+      else BoltContactStateTrialOf(s, gp, zero, n, t);
+    }
+    if (BoltContactStateOpenTest(s) == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, BoltContactStateWork(s), tau, out));
+    else
+      for (PetscInt gp = 0; gp < ngp; gp++) {
+        const PetscReal *t = &tau[3 * gp], *n = &gpNormal[3 * gp];
+        out[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+      }
+  }
+  rom->tnVersion = BoltContactStateVersion(s);
+  rom->tnValid   = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The check's gaps (BoltDualCheckStep): every point's, held ones included, from the same rows as
+   ROMContactGaps (not the augmented ROM's: it is not registered there). On flat surfaces without
+   friction only the normal gap, as the decisions read it: the check's normal tractions and
+   penetrations need no more. */
+PetscErrorCode ROMCheckGaps(BoltOperator *op, Vec q, PetscReal gap[])
+{
+  BoltROM        *rom  = (BoltROM *)BoltOperatorContext(op);
+  const PetscBool keep = rom->gapsEverywhere;
+
+  PetscFunctionBeginUser;
+  rom->gapsEverywhere = PETSC_TRUE;
+  PetscCall(ROMContactGaps(op, q, gap));
+  rom->gapsEverywhere = keep;
+  PetscFunctionReturn(0);
+}
+
+/* The opening test's traction of the (anchored) gaps gap at every point, where it is affine in
+   them (ROMOpenTraction); registered for the check only there. */
+PetscErrorCode ROMCheckTraction(BoltOperator *op, const PetscReal gap[], PetscReal tn[])
+{
+  BoltROM          *rom = (BoltROM *)BoltOperatorContext(op);
+  BoltContactSet   *c   = rom->contact;
+  const PetscInt    ngp = 4 * BoltContactSetElementCount(c);
+  const PetscReal  *gpNormal = BoltContactSetNormals(c);
+
+  PetscFunctionBeginUser;
+  PetscCall(ROMOpenTractionTerms(rom, BoltOperatorState(op)));
+  for (PetscInt gp = 0; gp < ngp; gp++) {
+    const PetscReal *g = &gap[3 * gp], *n = &gpNormal[3 * gp];
+    tn[gp] = rom->tnC[gp] + rom->tnK[gp] * (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The opening test's traction. Under the penalty law the trial traction of a point is affine in
    its gap, t = lambda + P g, so where the test reads t.n of the point alone, or (nodal quadrature,
    flat surfaces) of the points of its own node pair, its traction is C + K g.n per point: C the
    test applied to the multipliers, K to the traction of a unit normal gap. Both change only with
-   the state, and are made again (collectively) when its version moves. */
+   the state. */
 PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
 {
   BoltROM          *rom = (BoltROM *)BoltOperatorContext(op);
-  BoltContactSet   *c   = rom->contact;
   BoltContactState *s   = BoltOperatorState(op);
-  const PetscInt    ngp = 4 * BoltContactSetElementCount(c);
-  const PetscReal  *gpNormal = BoltContactSetNormals(c), *gapAll = BoltContactStateGap(s);
 
   PetscFunctionBeginUser;
-  if (BoltContactStateAugmented(s) || BoltContactStateHasFriction(s) || (BoltContactStateOpenTest(s) == BOLT_OPEN_NODAL && !(BoltContactSetQuadrature(c) == BOLT_QUADRATURE_NODAL && rom->flat))) {
-    PetscCall(BoltContactStateOpenTraction(s, tn));
-    PetscFunctionReturn(0);
+  if (!ROMOpenTractionAffine(rom, s)) PetscCall(BoltContactStateOpenTraction(s, tn));
+  else PetscCall(ROMCheckTraction(op, BoltContactStateGap(s), tn));
+  PetscFunctionReturn(0);
+}
+
+/* Whether the proof of ROMSetKept applies: penalty law without friction, flat surfaces (one
+   normal row per node pair), nodal quadrature (a point reads its own row); not with
+   -rom_gaps_everywhere, whose runs test every point at every solve (the same bits). */
+PetscBool ROMSetKeptApplies(BoltROM *rom, BoltContactState *s)
+{
+  return (PetscBool)(!rom->gapsEverywhere && !rom->wholeRows && !rom->pairGaps && BoltContactSetQuadrature(rom->contact) == BOLT_QUADRATURE_NODAL && ROMOpenTractionAffine(rom, s));
+}
+
+/* The intervals of ROMSetKept from the state: a closed point stays closed while
+   tnC + tnK g < band, i.e. g < (band - tnC) / tnK; an open one stays open while -g <= the
+   activation gap, and while its normal gap is farther from closing than the whole gap's rounding
+   bound (else the whole gap is taken, ROMContactGaps). Each bound is moved inwards by 1e-10 of
+   its terms, far beyond the rounding of the tests themselves, so that a gap inside proves the
+   test's outcome. A point without a row (both nodes clamped) has the gap 0 whatever q is. */
+static PetscErrorCode ROMSetKeptIntervals(BoltROM *rom, BoltContactState *s)
+{
+  BoltContactSet  *c   = rom->contact;
+  const PetscInt   ngp = 4 * BoltContactSetElementCount(c);
+  const PetscBool *active = BoltContactStateActive(s), *mayChange = BoltContactStateMayChange(s);
+  const PetscReal  activationGap = BoltContactStateActivationGap(s), openLo = -activationGap + 1e-10 * PetscAbsReal(activationGap);
+  const PetscBool  whole = (PetscBool)(BoltContactSetIsComplementarity(c) && BoltContactSetReanchor(c));
+
+  PetscFunctionBeginUser;
+  PetscCall(ROMOpenTractionTerms(rom, s));
+  for (PetscInt r = 0; r < rom->nGapRows; r++) {
+    rom->keptLo[r]   = PETSC_MIN_REAL;
+    rom->keptHi[r]   = PETSC_MAX_REAL;
+    rom->keptCoef[r] = 0;
   }
-  if (!rom->tnValid || rom->tnVersion != BoltContactStateVersion(s)) {
-    PetscReal *tau; /* 3 per point: the tractions whose normal part is wanted */
-    PetscCall(BoltGrowReal(&rom->tnTau, &rom->tnTauAlloc, 3 * ngp + 1));
-    tau = rom->tnTau;
-    for (PetscInt pass = 0; pass < 2; pass++) {
-      PetscReal       *out    = pass ? rom->tnK : rom->tnC;
-      const PetscBool *active = BoltContactStateActive(s);
-      const PetscReal *lambda = BoltContactStateLambda(s);
-      for (PetscInt gp = 0; gp < ngp; gp++) {
-        const PetscReal *n    = &gpNormal[3 * gp], zero[3] = {0, 0, 0};
-        PetscReal       *t    = &tau[3 * gp];
-        if (!active[gp]) t[0] = t[1] = t[2] = 0;
-        else if (!pass) PetscCall(PetscArraycpy(t, &lambda[3 * gp], 3));
-        else BoltContactStateTrialOf(s, gp, zero, n, t);
-      }
-      if (BoltContactStateOpenTest(s) == BOLT_OPEN_NODAL) PetscCall(BoltContactSetSmoothedNormalTraction(c, BoltContactStateWork(s), tau, out));
-      else
-        for (PetscInt gp = 0; gp < ngp; gp++) {
-          const PetscReal *t = &tau[3 * gp], *n = &gpNormal[3 * gp];
-          out[gp] = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
-        }
-    }
-    rom->tnVersion = BoltContactStateVersion(s);
-    rom->tnValid   = PETSC_TRUE;
-  }
+  rom->keptNever = PETSC_FALSE;
   for (PetscInt gp = 0; gp < ngp; gp++) {
-    const PetscReal *g = &gapAll[3 * gp], *n = &gpNormal[3 * gp];
-    tn[gp] = rom->tnC[gp] + rom->tnK[gp] * (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]);
+    const PetscInt  r    = rom->gpRows[4 * gp + gp % 4];
+    const PetscReal band = BoltContactStateBandTraction(s, BoltContactSetElementPair(c, gp / 4)), C = rom->tnC[gp], K = rom->tnK[gp];
+    if (mayChange && !mayChange[gp]) continue; /* held: its state stays whatever its gap */
+    if (active[gp]) {
+      const PetscReal hi = K > 0 ? (band - C) / K - 1e-10 * (PetscAbsReal(band) + PetscAbsReal(C)) / K : PETSC_MIN_REAL;
+      if (r < 0) rom->keptNever = (PetscBool)(rom->keptNever || !(C < band));
+      else { /* (and within 1e4 times its distance from opening on the other side, where K g's rounding stays below the margin) */
+        rom->keptHi[r] = PetscMin(rom->keptHi[r], hi);
+        if (K > 0) rom->keptLo[r] = PetscMax(rom->keptLo[r], -1e4 * (PetscAbsReal(band) + PetscAbsReal(C)) / K);
+      }
+    } else {
+      if (r < 0) rom->keptNever = (PetscBool)(rom->keptNever || activationGap < 0);
+      else {
+        rom->keptLo[r] = PetscMax(rom->keptLo[r], openLo);
+        if (whole) rom->keptCoef[r] = PetscMax(rom->keptCoef[r], rom->wholeGapBound[gp]);
+      }
+    }
   }
+  rom->keptVersion = BoltContactStateVersion(s);
+  rom->keptValid   = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* Whether the gaps of the last ROMContactGaps prove that no point would change its state, so
+   that the dual loop may skip the point-by-point update (BoltDualUpdateActive): each live row's
+   normal gap inside the interval of its points (ROMSetKeptIntervals). Rows read once per solve
+   instead of every point's test and traction. Collective. */
+PetscErrorCode ROMSetKept(BoltOperator *op, PetscBool *kept)
+{
+  BoltROM          *rom = (BoltROM *)BoltOperatorContext(op);
+  BoltContactState *s   = BoltOperatorState(op);
+  PetscInt          in  = 1, all;
+
+  PetscFunctionBeginUser;
+  if (!ROMSetKeptApplies(rom, s)) in = 0;
+  else {
+    if (!rom->keptValid || rom->keptVersion != BoltContactStateVersion(s)) PetscCall(ROMSetKeptIntervals(rom, s));
+    if (rom->keptNever) in = 0;
+    for (PetscInt r = 0; r < rom->nLiveRows && in; r++) {
+      const PetscReal g = PetscRealPart(rom->gnRow[r]);
+      in = g < rom->keptHi[r] && g > rom->keptLo[r] + rom->keptCoef[r] * rom->gapsXmax;
+    }
+  }
+  PetscCall(MPIU_Allreduce(&in, &all, 1, MPIU_INT, MPI_MIN, rom->comm));
+  *kept = (PetscBool)(all == 1);
   PetscFunctionReturn(0);
 }
 
@@ -238,6 +359,9 @@ PetscErrorCode ROMSetUpGapRows(BoltROM *rom, const PetscBool mayChange[])
     rom->wholeGapBound[gp] = 1e-9 * b;
   }
   PetscCall(PetscMalloc2(rom->nGapRows * n + 1, &rom->Rn, rom->nGapRows + 1, &rom->gnRow));
+  PetscCall(PetscFree3(rom->keptLo, rom->keptHi, rom->keptCoef));
+  PetscCall(PetscMalloc3(rom->nGapRows + 1, &rom->keptLo, rom->nGapRows + 1, &rom->keptHi, rom->nGapRows + 1, &rom->keptCoef));
+  rom->keptValid = PETSC_FALSE;
   for (PetscInt i = 0; i < nloc; i++)
     for (PetscInt r = first[i]; r >= 0; r = next[r]) {
       const PetscReal *D = &rom->De[12 * n * (rowGp[r] / 4) + 3 * rowNode[r]];

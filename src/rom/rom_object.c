@@ -78,7 +78,7 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
   o->holdUnmarked = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-rom_hold_unmarked", "Online, points the opening shapes' solves did not change keep their preloaded state (resolved: true, false under friction)", NULL, o->holdUnmarked, &o->holdUnmarked, &o->holdUnmarkedSet));
   o->gapsEverywhere = PETSC_FALSE;
-  PetscCall(PetscOptionsBool("-rom_gaps_everywhere", "Online check: every point's gaps at every solve, not only those a decision reads (the same history, slower)", NULL, o->gapsEverywhere, &o->gapsEverywhere, NULL));
+  PetscCall(PetscOptionsBool("-rom_gaps_everywhere", "Online check: every point's gaps and opening or closing test at every solve, not only those a decision needs (the same history, slower)", NULL, o->gapsEverywhere, &o->gapsEverywhere, NULL));
   o->updateRank = -1;
   PetscCall(PetscOptionsInt("-rom_update_rank", "Largest rank of a low-rank update of the online factorisation before it refactorises (-1: resolved by SetUp; 0: always refactorise)", NULL, o->updateRank, &o->updateRank, NULL));
   o->nSnapshotModes = 0;

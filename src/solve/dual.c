@@ -12,6 +12,18 @@ static PetscErrorCode BoltDualUpdateActive(BoltDual *d, PetscInt *nchanged, Pets
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
+  /* a settled set that the model proves unchanged: the update would leave the state as it is */
+  if (op->ops.setKept && BoltContactStateSettled(op->state)) {
+    PetscBool kept;
+    PetscCall(op->ops.setKept(op, &kept));
+    if (kept) {
+      *nchanged = 0;
+      *cycling  = PETSC_FALSE;
+      d->keptUpdates++;
+      PetscCall(PetscLogEventEnd(BOLT_EVENT_CONTACT_UPDATE, 0, 0, 0, 0));
+      PetscFunctionReturn(0);
+    }
+  }
   if (op->ops.openTraction) PetscCall(op->ops.openTraction(op, d->tnOpen));
   else PetscCall(BoltContactStateOpenTraction(op->state, d->tnOpen));
   PetscCall(BoltContactStateUpdateActive(op->state, d->tnOpen, nchanged, cycling));
@@ -335,7 +347,7 @@ PetscErrorCode BoltDualSolveStatic(BoltDual *d, Vec rhs, Vec q, PetscReal target
 PetscErrorCode BoltDualResetCounters(BoltDual *d)
 {
   PetscFunctionBeginUser;
-  d->factorizations = d->updates = d->solves = d->outerTotal = d->innerTotal = d->outerMax = d->innerMax = 0;
+  d->factorizations = d->updates = d->solves = d->outerTotal = d->innerTotal = d->outerMax = d->innerMax = d->keptUpdates = 0;
   d->worstPenetration = d->worstTension = d->worstCompression = d->worstProduct = 0;
   d->tContactStiffness = d->tDisplacements = d->tContactForces = 0;
   PetscFunctionReturn(0);
@@ -413,6 +425,7 @@ PetscErrorCode BoltDualDestroy(BoltDual **dp)
   PetscFunctionBeginUser;
   if (!d) PetscFunctionReturn(0);
   PetscCall(PetscFree(d->checkGaps));
+  PetscCall(PetscFree2(d->checkAnchored, d->checkTn));
   PetscCall(VecDestroy(&d->Fc));
   PetscCall(VecDestroy(&d->work));
   PetscCall(VecDestroy(&d->qp));

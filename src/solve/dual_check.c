@@ -20,11 +20,21 @@ PetscErrorCode BoltDualCheckStep(BoltDual *d, Vec q, Vec v, Vec a, PetscReal amp
   PetscCall(PetscLogEventBegin(BOLT_EVENT_CONTACT_CHECK, 0, 0, 0, 0));
   PetscCall(PetscTime(&t0));
   if (!d->checkGaps) PetscCall(PetscMalloc1(12 * BoltContactSetElementCount(op->contact) + 1, &d->checkGaps));
-  PetscCall(BoltOperatorContactDisplacements(op, q));
-  PetscCall(BoltContactSetGapsOf(op->contact, BoltContactStateWork(s), d->checkGaps));
+  if (op->ops.checkGaps) PetscCall(op->ops.checkGaps(op, q, d->checkGaps));
+  else {
+    PetscCall(BoltOperatorContactDisplacements(op, q));
+    PetscCall(BoltContactSetGapsOf(op->contact, BoltContactStateWork(s), d->checkGaps));
+  }
   /* a pair its basis ties has no gap to tell: its force comes from the model's residual there */
   if (op->ops.heldTractions) PetscCall(op->ops.heldTractions(op, q, v, a, amp, &tied, &tTied));
-  PetscCall(BoltContactStateCheck(s, d->checkGaps, tied, tTied, worst, &leaving));
+  if (op->ops.checkTraction && !tied) { /* the model's own form of the opening test's traction */
+    const PetscInt ngp = 4 * BoltContactSetElementCount(op->contact);
+    if (!d->checkTn) PetscCall(PetscMalloc2(3 * ngp + 1, &d->checkAnchored, ngp + 1, &d->checkTn));
+    PetscCall(PetscArraycpy(d->checkAnchored, d->checkGaps, 3 * ngp));
+    BoltContactStateAnchorGaps(s, d->checkAnchored);
+    PetscCall(op->ops.checkTraction(op, d->checkAnchored, d->checkTn));
+  }
+  PetscCall(BoltContactStateCheck(s, d->checkGaps, tied, tTied, op->ops.checkTraction && !tied ? d->checkTn : NULL, worst, &leaving));
   for (PetscInt k = 0; k < 3; k++) d->checkWorst[k] = PetscMax(d->checkWorst[k], worst[k]);
   if (leaving && !d->checkLeaving) {
     d->checkFirstStep = d->step;

@@ -14,6 +14,7 @@ PetscErrorCode BoltDualSummaryWrite(BoltDual *d, BoltJSON *j, PetscBool full)
   PetscCall(BoltJSONInt(j, "solves", d->solves));
   PetscCall(BoltJSONInt(j, "outer_total", d->outerTotal));
   PetscCall(BoltJSONInt(j, "inner_total", d->innerTotal));
+  PetscCall(BoltJSONInt(j, "set_updates_proved_unchanged", d->keptUpdates));
   if (full) {
     PetscCall(BoltJSONInt(j, "outer_max", d->outerMax));
     PetscCall(BoltJSONInt(j, "inner_max", d->innerMax));

@@ -17,6 +17,31 @@ PetscErrorCode BoltOperatorCreate(MPI_Comm comm, const char name[], BoltContactS
   PetscFunctionReturn(0);
 }
 
+/* y = M x (which 0) or K x (1): pointwise in modal coordinates (BoltOperatorSetDiagonalProducts). */
+PetscErrorCode BoltOperatorMult(BoltOperator *op, PetscInt which, Vec x, Vec y)
+{
+  PetscFunctionBeginUser;
+  if (op->Mdiag) PetscCall(VecPointwiseMult(y, which ? op->Kdiag : op->Mdiag, x));
+  else PetscCall(MatMult(which ? op->K : op->M, x, y));
+  PetscFunctionReturn(0);
+}
+
+/* The products with M and K (BoltOperatorMult) take their diagonals alone: the model's
+   coordinates are its modes, where both are diagonal up to the rounding of their projection
+   (a reduced model's; its factorisations keep the whole matrices, whose rounding the stiff
+   contact penalty would otherwise lift to 1e-8 of the response). After BoltOperatorSetSystem. */
+PetscErrorCode BoltOperatorSetDiagonalProducts(BoltOperator *op)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&op->Mdiag));
+  PetscCall(VecDestroy(&op->Kdiag));
+  PetscCall(MatCreateVecs(op->M, &op->Mdiag, NULL));
+  PetscCall(MatCreateVecs(op->K, &op->Kdiag, NULL));
+  PetscCall(MatGetDiagonal(op->M, op->Mdiag));
+  PetscCall(MatGetDiagonal(op->K, op->Kdiag));
+  PetscFunctionReturn(0);
+}
+
 /* The model's matrices and load vectors (referenced; C may be NULL for static solves). */
 PetscErrorCode BoltOperatorSetSystem(BoltOperator *op, Mat M, Mat C, Mat K, Vec load, Vec preload)
 {
@@ -90,6 +115,9 @@ PetscErrorCode BoltOperatorSetOperation(BoltOperator *op, BoltOperatorOp which, 
   case BOLT_OP_CONTACT_STIFFNESS: op->ops.contactStiffness = (PetscErrorCode(*)(BoltOperator *, Mat *))fn; break;
   case BOLT_OP_CONTACT_GAPS: op->ops.contactGaps = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal[]))fn; break;
   case BOLT_OP_OPEN_TRACTION: op->ops.openTraction = (PetscErrorCode(*)(BoltOperator *, PetscReal[]))fn; break;
+  case BOLT_OP_CHECK_TRACTION: op->ops.checkTraction = (PetscErrorCode(*)(BoltOperator *, const PetscReal[], PetscReal[]))fn; break;
+  case BOLT_OP_CHECK_GAPS: op->ops.checkGaps = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal[]))fn; break;
+  case BOLT_OP_SET_KEPT: op->ops.setKept = (PetscErrorCode(*)(BoltOperator *, PetscBool *))fn; break;
   case BOLT_OP_PROBE: op->ops.probe = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal *))fn; break;
   case BOLT_OP_PAIR_FORCES: op->ops.pairForces = (PetscErrorCode(*)(BoltOperator *, Vec, PetscReal[]))fn; break;
   case BOLT_OP_VECTORS_SAVE: op->ops.vectorsSave = (PetscErrorCode(*)(BoltOperator *, PetscViewer, PetscInt, const char *const[], Vec[]))fn; break;
@@ -226,6 +254,8 @@ PetscErrorCode BoltOperatorDestroy(BoltOperator **opp)
   PetscCall(MatDestroy(&op->C));
   PetscCall(MatDestroy(&op->K));
   PetscCall(MatDestroy(&op->Krigid));
+  PetscCall(VecDestroy(&op->Mdiag));
+  PetscCall(VecDestroy(&op->Kdiag));
   PetscCall(VecDestroy(&op->load));
   PetscCall(VecDestroy(&op->preload));
   PetscCall(BoltContactStateDestroy(&op->state));
