@@ -3,6 +3,15 @@
 #include "private/rom.h"
 #include <petscblaslapack.h>
 
+/* Whether an open point's whole gap is taken near closing (it sticks where it closes, and its
+   anchor needs the tangential part): one-sided contact that re-anchors, with normal rows and
+   nodal points. */
+static PetscBool ROMWholeGapsNearClosing(BoltROM *rom)
+{
+  BoltContactSet *c = rom->contact;
+  return (PetscBool)(BoltContactSetIsComplementarity(c) && BoltContactSetReanchor(c) && !rom->wholeRows && BoltContactSetQuadrature(c) == BOLT_QUADRATURE_NODAL);
+}
+
 /* The gaps at the local contact points from rows of node-pair differences D = V_b - V_a (a
    sixth or half of the rows of V_c, and free of the cancellation in u_b - u_a), under the
    penalty law: there the multipliers do not take the trial traction, so the gaps only feed the
@@ -10,8 +19,9 @@
    g = (sum_a N_a n' D_a q) n: the decisions read t.n, where the tangential part cancels to
    round-off; friction's decisions read the slip too, so there the whole gap. With augmentation
    (the multipliers take the trial traction): u_c and the set's interpolation, as the full
-   model. */
-PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
+   model. everywhere: every row, held points' too, and every open point's whole gap
+   (-rom_gaps_everywhere, and the check). */
+static PetscErrorCode ROMGaps(BoltOperator *op, Vec q, PetscBool everywhere, PetscReal gap[])
 {
   BoltROM           *rom = (BoltROM *)BoltOperatorContext(op);
   BoltContactSet    *c   = rom->contact;
@@ -20,8 +30,8 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   const PetscReal   *gpN = BoltContactSetShapeValues(c), *gpNormal = BoltContactSetNormals(c), activationGap = BoltContactStateActivationGap(s);
   const PetscBool   *active = BoltContactStateActive(s), *mayChange = BoltContactStateMayChange(s);
   const PetscScalar *x;
-  PetscBool          whole;
-  PetscReal          xmax = 0;
+  const PetscBool    whole = ROMWholeGapsNearClosing(rom);
+  PetscReal          xmax  = 0;
 
   PetscFunctionBeginUser;
   if (BoltContactStateAugmented(s)) {
@@ -31,7 +41,7 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   }
   if (rom->pairGaps) { /* the owned pairs' gaps (the held ones once), sent to their points */
     PetscCall(VecGetArrayRead(q, &x));
-    ROMRowsTimes(rom->heldRowsDone && !rom->gapsEverywhere ? 3 * rom->npLive : 3 * rom->npOwned, rom->n, rom->npRows, 3 * rom->npOwned, x, rom->npGap);
+    ROMRowsTimes(rom->heldRowsDone && !everywhere ? 3 * rom->npLive : 3 * rom->npOwned, rom->n, rom->npRows, 3 * rom->npOwned, x, rom->npGap);
     PetscCall(VecRestoreArrayRead(q, &x));
     rom->heldRowsDone = PETSC_TRUE;
     for (PetscInt k = 0; k < rom->npOwned; k++)
@@ -45,9 +55,8 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
   PetscCall(VecGetArrayRead(q, &x));
   /* the rows of points that may change; those of held points (their state is kept, so no decision
      reads their gaps) once, for gaps that stay defined */
-  ROMRowsTimes(rom->heldRowsDone && !rom->gapsEverywhere ? rom->nLiveRows : rom->nGapRows, rom->n, rom->Rn, rom->nGapRows, x, rom->gnRow);
+  ROMRowsTimes(rom->heldRowsDone && !everywhere ? rom->nLiveRows : rom->nGapRows, rom->n, rom->Rn, rom->nGapRows, x, rom->gnRow);
   rom->heldRowsDone = PETSC_TRUE;
-  whole = (PetscBool)(BoltContactSetIsComplementarity(c) && BoltContactSetReanchor(c) && !rom->wholeRows && quadrature == BOLT_QUADRATURE_NODAL);
   for (PetscInt j = 0; j < rom->n && whole; j++) xmax = PetscMax(xmax, PetscAbsReal(PetscRealPart(x[j])));
   rom->gapsXmax = xmax;
   for (PetscInt gp = 0; gp < ngp; gp++) {
@@ -65,7 +74,7 @@ PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
          node pair's rows of D_e in a fixed order (the same bits on any partition). Only where it
          may close: elsewhere the decision -g.n > activationGap is the same with the normal gap
          alone, whose rounding differs from the whole gap's by less than the bound. */
-      if (whole && !active[gp] && (rom->gapsEverywhere || ((!mayChange || mayChange[gp]) && -gn > activationGap - rom->wholeGapBound[gp] * xmax))) {
+      if (whole && !active[gp] && (everywhere || ((!mayChange || mayChange[gp]) && -gn > activationGap - rom->wholeGapBound[gp] * xmax))) {
         PetscScalar whole3[3];
         ROMRowsTimes(3, rom->n, &rom->De[12 * rom->n * (gp / 4) + 3 * (gp % 4)], 12, x, whole3);
         for (PetscInt k = 0; k < 3; k++) g[k] = PetscRealPart(whole3[k]);
@@ -125,19 +134,24 @@ static PetscErrorCode ROMOpenTractionTerms(BoltROM *rom, BoltContactState *s)
   PetscFunctionReturn(0);
 }
 
-/* The check's gaps (BoltDualCheckStep): every point's, held ones included, from the same rows as
-   ROMContactGaps (not the augmented ROM's: it is not registered there). On flat surfaces without
-   friction only the normal gap, as the decisions read it: the check's normal tractions and
-   penetrations need no more. */
-PetscErrorCode ROMCheckGaps(BoltOperator *op, Vec q, PetscReal gap[])
+/* The dual loop's gaps (ROMGaps): those its decisions read, or all with -rom_gaps_everywhere. */
+PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
 {
-  BoltROM        *rom  = (BoltROM *)BoltOperatorContext(op);
-  const PetscBool keep = rom->gapsEverywhere;
+  BoltROM *rom = (BoltROM *)BoltOperatorContext(op);
 
   PetscFunctionBeginUser;
-  rom->gapsEverywhere = PETSC_TRUE;
-  PetscCall(ROMContactGaps(op, q, gap));
-  rom->gapsEverywhere = keep;
+  PetscCall(ROMGaps(op, q, rom->gapsEverywhere, gap));
+  PetscFunctionReturn(0);
+}
+
+/* The check's gaps (BoltDualCheckStep): every point's, held ones included, from the same rows
+   (not the augmented ROM's: it is not registered there). On flat surfaces without friction only
+   the normal gap, as the decisions read it: the check's normal tractions and penetrations need no
+   more. */
+PetscErrorCode ROMCheckGaps(BoltOperator *op, Vec q, PetscReal gap[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(ROMGaps(op, q, PETSC_TRUE, gap));
   PetscFunctionReturn(0);
 }
 
@@ -195,7 +209,7 @@ static PetscErrorCode ROMSetKeptIntervals(BoltROM *rom, BoltContactState *s)
   const PetscInt   ngp = 4 * BoltContactSetElementCount(c);
   const PetscBool *active = BoltContactStateActive(s), *mayChange = BoltContactStateMayChange(s);
   const PetscReal  activationGap = BoltContactStateActivationGap(s), openLo = -activationGap + 1e-10 * PetscAbsReal(activationGap);
-  const PetscBool  whole = (PetscBool)(BoltContactSetIsComplementarity(c) && BoltContactSetReanchor(c));
+  const PetscBool  whole = ROMWholeGapsNearClosing(rom);
 
   PetscFunctionBeginUser;
   PetscCall(ROMOpenTractionTerms(rom, s));
@@ -239,15 +253,12 @@ PetscErrorCode ROMSetKept(BoltOperator *op, PetscBool *kept)
   BoltContactState *s   = BoltOperatorState(op);
   PetscInt          in  = 1, all;
 
-  PetscFunctionBeginUser;
-  if (!ROMSetKeptApplies(rom, s)) in = 0;
-  else {
-    if (!rom->keptValid || rom->keptVersion != BoltContactStateVersion(s)) PetscCall(ROMSetKeptIntervals(rom, s));
-    if (rom->keptNever) in = 0;
-    for (PetscInt r = 0; r < rom->nLiveRows && in; r++) {
-      const PetscReal g = PetscRealPart(rom->gnRow[r]);
-      in = g < rom->keptHi[r] && g > rom->keptLo[r] + rom->keptCoef[r] * rom->gapsXmax;
-    }
+  PetscFunctionBeginUser; /* (registered only where ROMSetKeptApplies) */
+  if (!rom->keptValid || rom->keptVersion != BoltContactStateVersion(s)) PetscCall(ROMSetKeptIntervals(rom, s));
+  if (rom->keptNever) in = 0;
+  for (PetscInt r = 0; r < rom->nLiveRows && in; r++) {
+    const PetscReal g = PetscRealPart(rom->gnRow[r]);
+    in = g < rom->keptHi[r] && g > rom->keptLo[r] + rom->keptCoef[r] * rom->gapsXmax;
   }
   PetscCall(MPIU_Allreduce(&in, &all, 1, MPIU_INT, MPI_MIN, rom->comm));
   *kept = (PetscBool)(all == 1);

@@ -13,6 +13,7 @@ PetscErrorCode BoltDualCheckStep(BoltDual *d, Vec q, Vec v, Vec a, PetscReal amp
   const PetscReal  *tTied = NULL;
   PetscReal         worst[3];
   PetscInt          leaving;
+  PetscBool         given;
   PetscLogDouble    t0, t1;
 
   PetscFunctionBeginUser;
@@ -27,14 +28,15 @@ PetscErrorCode BoltDualCheckStep(BoltDual *d, Vec q, Vec v, Vec a, PetscReal amp
   }
   /* a pair its basis ties has no gap to tell: its force comes from the model's residual there */
   if (op->ops.heldTractions) PetscCall(op->ops.heldTractions(op, q, v, a, amp, &tied, &tTied));
-  if (op->ops.checkTraction && !tied) { /* the model's own form of the opening test's traction */
+  given = (PetscBool)(op->ops.checkTraction && !tied);
+  if (given) { /* the model's own form of the opening test's traction */
     const PetscInt ngp = 4 * BoltContactSetElementCount(op->contact);
     if (!d->checkTn) PetscCall(PetscMalloc2(3 * ngp + 1, &d->checkAnchored, ngp + 1, &d->checkTn));
     PetscCall(PetscArraycpy(d->checkAnchored, d->checkGaps, 3 * ngp));
     BoltContactStateAnchorGaps(s, d->checkAnchored);
     PetscCall(op->ops.checkTraction(op, d->checkAnchored, d->checkTn));
   }
-  PetscCall(BoltContactStateCheck(s, d->checkGaps, tied, tTied, op->ops.checkTraction && !tied ? d->checkTn : NULL, worst, &leaving));
+  PetscCall(BoltContactStateCheck(s, d->checkGaps, tied, tTied, given ? d->checkTn : NULL, worst, &leaving));
   for (PetscInt k = 0; k < 3; k++) d->checkWorst[k] = PetscMax(d->checkWorst[k], worst[k]);
   if (leaving && !d->checkLeaving) {
     d->checkFirstStep = d->step;
