@@ -47,6 +47,7 @@ PetscErrorCode ROMTieCheckDestroy(BoltROM *rom);
 PetscErrorCode ROMHeldTractions(BoltOperator *op, Vec q, Vec v, Vec a, PetscReal amp, const PetscBool **tied, const PetscReal **t);
 PetscErrorCode ROMGetBasis(BoltROM *rom, BV *V);
 PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads);
+PetscErrorCode BoltROMStaticChanges(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, const BoltPreloadState *shared, PetscBool **changed, BoltPreloadState **solved);
 PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BV *B, Mat *Kheld);
 PetscErrorCode ROMOnlineDestroy(BoltROM *rom);
 PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet *loads, const char file[]);
@@ -100,7 +101,8 @@ struct _n_BoltReductionOptions {
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
   PetscInt   nFomSnapshots;                 /* the FOM's displacement snapshots of this run (-snapshot_every) */
   Vec       *fomSnapshots;
-  PetscBool  trained;                       /* -rom_train: inputs where the FOM's run changed the contact (trained.c) */
+  PetscBool  trained;                       /* -rom_train: inputs where the contact changes, the other closed pairs tied (trained.c) */
+  PetscBool  trainStatic;                   /* -rom_train static: where it changes from static solves of the preloaded joint, not the FOM's run */
   const PetscBool *fomChanged;              /* the FOM's run: per local contact point, its state left the preloaded one */
 };
 
@@ -237,6 +239,7 @@ struct _n_BoltROM {
   /* a trained ROM's check of its tied pairs (tie_check.c): the rows of K V and M V, of the load
      and of the preload at the tied pairs' DOFs this rank owns, for the ties' forces */
   struct BoltROMTieCheck_s *tie;
+  const BoltPreloadState   *solvedPreload; /* -rom_train static without a FOM run: the preloaded state solved offline, while the build uses it */
 };
 
 #endif

@@ -275,6 +275,8 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscReal             staticPenaltyScale = rom->staticPenaltyScale;
   Vec                   q0keep = NULL;
   Mat                   K, M, Kheld = NULL; /* a trained ROM's Krylov stiffness: K + K_c of the preloaded joint */
+  PetscBool            *staticChanged = NULL; /* -rom_train static: the points static solves change */
+  BoltPreloadState     *solvedPreload = NULL; /* and the preloaded state, if no FOM ran */
 
   PetscFunctionBeginUser;
   PetscCall(BoltAssemblerGetMatrices(asmb, &K, &M));
@@ -301,7 +303,15 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     kry->solveCtx = ir;
     rom->nCCM     = ir->rankCCM;
     rom->nJIM     = ir->rankJIM;
-  } else if (o->trained) PetscCall(ROMTrainedInputs(rom, asmb, contact, loads, &B, &Kheld));
+  } else if (o->trained) {
+    if (o->trainStatic) { /* where the contact changes from static solves, in place of the FOM run's record */
+      if (BoltMeshIsFree(BoltContactSetMesh(contact)) && !rom->rigid) PetscCall(BoltAssemblerRigidModes(asmb, &rom->rigid)); /* their inertia relief */
+      PetscCall(BoltROMStaticChanges(asmb, contact, loads, rom, o->fomPreload, &staticChanged, &solvedPreload));
+      o->fomChanged = staticChanged;
+      if (solvedPreload) o->fomPreload = rom->solvedPreload = solvedPreload;
+    }
+    PetscCall(ROMTrainedInputs(rom, asmb, contact, loads, &B, &Kheld));
+  }
   else PetscCall(ROMInputMatrix(contact, loads, BoltLoadSetLoad(loads), NULL, &B, &rom->ninputs, NULL));
   PetscCall(PetscTime(&t1));
   rom->tInterface = t1 - t0;
@@ -319,12 +329,12 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscCall(BoltMemoryRelease());
   PetscCall(BoltMemoryPrint(o->comm, "the Krylov basis"));
   rom->nRigid = 0;
-  if (BoltMeshIsFree(BoltContactSetMesh(contact))) PetscCall(BoltAssemblerRigidModes(asmb, &rom->rigid)); /* the static solves' inertia relief (static_shapes.c) */
+  if (BoltMeshIsFree(BoltContactSetMesh(contact)) && !rom->rigid) PetscCall(BoltAssemblerRigidModes(asmb, &rom->rigid)); /* the static solves' inertia relief (static_shapes.c) */
   if (staticShapes) {
     Vec     *extra;
     PetscInt added, nextra;
     PetscCall(PetscLogEventBegin(BOLT_EVENT_BASIS, 0, 0, 0, 0));
-    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->closedKeepActive, rom->openingScale, rom->nOpenKrylov, o->fomPreload, o->nFomSnapshots, o->fomSnapshots, &nextra, &extra, &preloadCalibrated));
+    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->closedKeepActive, o->trained ? 0 : rom->openingScale, rom->nOpenKrylov, o->fomPreload, o->nFomSnapshots, o->fomSnapshots, &nextra, &extra, &preloadCalibrated));
     PetscCall(BoltMemoryPrint(o->comm, "the preloaded state's static solves"));
     PetscCall(BoltAssemblerDamping(asmb, &C));
     if (o->trained) { PetscCall(VecDuplicate(extra[0], &q0keep)); PetscCall(VecCopy(extra[0], q0keep)); }
@@ -354,6 +364,12 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     PetscCall(BoltBasisAppend(V, "preloaded state, untied", 1, &q0keep, kry->deflationTol, &added));
   }
   PetscCall(VecDestroy(&q0keep));
+  if (o->trainStatic) {
+    o->fomChanged = NULL;
+    PetscCall(PetscFree(staticChanged));
+    if (solvedPreload) o->fomPreload = rom->solvedPreload = NULL;
+    PetscCall(BoltPreloadStateDestroy(&solvedPreload));
+  }
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;

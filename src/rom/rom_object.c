@@ -47,7 +47,17 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
     /* it replaces a -rom_file: with none it would be ignored without a word */
     PetscCheck(!set || o->file[0], comm, PETSC_ERR_USER_INPUT, "-rom_rebuild %s replaces a -rom_file that does not match the scene, but -rom_file is empty: give -rom_file %s to build the ROM into that file", o->rebuildFile, o->rebuildFile);
   }
-  PetscCall(PetscOptionsBool("-rom_train", "Build the ROM from this run's FOM: inputs where its contact changed state, the other closed pairs held (needs -fom true)", NULL, o->trained, &o->trained, NULL));
+  {
+    char      from[16] = "false";
+    PetscBool set;
+    PetscCall(PetscOptionsString("-rom_train", "Free where the contact changes, other closed pairs tied; learnt from this run's FOM (fom, or bare; needs -fom true) or static solves at -/+ 2x the load (static)", NULL, from, from, sizeof(from), &set));
+    if (set) {
+      const PetscBool fom = (PetscBool)(!from[0] || !strcmp(from, "fom") || !strcmp(from, "true") || !strcmp(from, "1"));
+      o->trainStatic      = (PetscBool)!strcmp(from, "static");
+      PetscCheck(fom || o->trainStatic || !strcmp(from, "false") || !strcmp(from, "0"), comm, PETSC_ERR_USER_INPUT, "-rom_train %s: give fom (learn from this run's FOM) or static (from static solves at -/+ 2 x the load), or false", from);
+      o->trained = (PetscBool)(fom || o->trainStatic);
+    }
+  }
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   o->augment = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_contact_augment", "Augmented Lagrangian contact in the ROM (default: as -contact_augment without interface reduction, penalty alone with it)", NULL, o->augment, &o->augment, &o->augmentSet));
@@ -212,6 +222,7 @@ PetscErrorCode BoltROMSummaryWrite(BoltROM *rom, BoltJSON *j)
   PetscCall(BoltJSONReal(j, "contact_penalty_scale", rom->penaltyScale));
   PetscCall(BoltJSONReal(j, "contact_band_scale", rom->bandScale));
   PetscCall(BoltJSONInt(j, "trained", rom->opt.trained));
+  PetscCall(BoltJSONString(j, "trained_on", !rom->opt.trained ? "" : rom->opt.trainStatic ? "static solves" : "the FOM's run"));
   PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
   PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
   PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));

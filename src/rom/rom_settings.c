@@ -39,7 +39,7 @@ static PetscErrorCode ROMFingerprintShapes(BoltReductionOptions *o, BoltROM *rom
   BoltROMFingerprint *fp = &rom->fingerprint;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltROMFingerprintInt(fp, "trained", o->trained));
+  PetscCall(BoltROMFingerprintInt(fp, "trained", o->trained ? (o->trainStatic ? 2 : 1) : 0)); /* 2: from static solves */
   PetscCall(BoltROMFingerprintString(fp, "static_shapes", !staticShapes ? "none" : rom->preloadState ? "preload state" : "static shapes"));
   PetscCall(BoltROMFingerprintInt(fp, "closed_krylov", staticShapes ? o->nClosed : 0));
   PetscCall(BoltROMFingerprintInt(fp, "closed_krylov_keep_active", staticShapes && o->nClosed > 0 ? o->closedKeepActive : 0));
@@ -93,7 +93,8 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
      the paper's, whose figures stay as they were) */
   /* ... and none by default with snapshot modes, which carry the openings and slips the FOM made */
   rom->openingScale = staticShapes && !o->trained ? (o->openingScaleSet ? o->openingScale : (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
-  rom->nOpenKrylov  = rom->openingScale > 0 ? o->nOpenKrylov : 0;
+  if (o->trained && o->trainStatic) rom->openingScale = o->openingScale; /* where the changing pairs are looked for; no shapes */
+  rom->nOpenKrylov  = rom->openingScale > 0 && !o->trained ? o->nOpenKrylov : 0;
   rom->slipScale    = rom->openingScale > 0 && BoltContactSetHasFriction(contact) ? o->slipScale : 0;
   rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) && !o->trained ? o->coneShapes : 0;
   rom->coneTraction = o->coneTraction;

@@ -94,7 +94,7 @@ static void BoltMarkBeyondCone(BoltContactState *s, PetscBool mark[])
 /* The FOM's preloaded state on the offline operator op (handed over, or solved as the FOM's
    time integrator would), kept per newton of preload in rom (multipliers, raw gaps, active
    set) and as the first static shape; the operator's penalties then scaled for the solves. */
-static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, BoltOperator *op, PetscReal staticPenaltyScale, const BoltPreloadState *shared, Vec q, Vec rhs, Vec *start, Vec *preload)
+static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, BoltOperator *op, PetscReal staticPenaltyScale, const BoltPreloadState *shared, Vec q, Vec rhs, Vec *start, Vec *preload, BoltPreloadState **solved)
 {
   BoltContactState *s = BoltOperatorState(op);
   PetscReal         F = BoltLoadSetPreloadForce(loads), outer, inner;
@@ -127,7 +127,8 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
     inner = nin;
     PetscCall(BoltPreloadStateCreate(fom, q, outer, inner, &st));
     PetscCall(BoltPreloadStateApply(st, op, q));
-    PetscCall(BoltPreloadStateDestroy(&st));
+    if (solved) *solved = st; /* the caller's: later solves start from it as from the FOM's */
+    else PetscCall(BoltPreloadStateDestroy(&st));
     PetscCall(BoltDualDestroy(&fomDual));
     PetscCall(BoltOperatorDestroy(&fom));
   }
@@ -154,7 +155,7 @@ static PetscErrorCode ROMPreloadedStart(BoltAssembler *asmb, BoltContactSet *c, 
      needs far fewer iterations on fine meshes. The preload itself
      stays the FOM's; this operator's state is its own, so the FOM's penalties are not touched. */
   PetscCall(BoltContactStateSetPenaltyScale(s, staticPenaltyScale, 1.0)); /* the band as it is */
-  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared ? "the FOM run's" : "solved offline", (PetscInt)outer, (PetscInt)inner, BoltContactStateActiveCount(s), BoltContactSetPointCountGlobal(c)));
+  PetscCall(PetscPrintf(rom->comm, "ROM: the FOM's preloaded state (%s): %" PetscInt_FMT " outer / %" PetscInt_FMT " inner iterations, %" PetscInt_FMT " of %" PetscInt_FMT " points closed", shared && shared != rom->solvedPreload ? "the FOM run's" : "solved offline", (PetscInt)outer, (PetscInt)inner, BoltContactStateActiveCount(s), BoltContactSetPointCountGlobal(c)));
   PetscFunctionReturn(0);
 }
 
@@ -310,6 +311,22 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
   PetscFunctionReturn(0);
 }
 
+/* The offline static solves' operator (a FOM without damping: static solves only), its contact
+   loop, and two work vectors. The calibration scales the preload vector and the load response may
+   scale the load: it works on copies, the scene's stay as they are. */
+static PetscErrorCode ROMOfflineOperator(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltOperator **op, BoltDual **dual, Vec *q, Vec *rhs)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, op));
+  PetscCall(BoltOperatorCopyLoads(*op, BoltLoadSetLoad(loads), BoltLoadSetPreload(loads)));
+  PetscCall(BoltDualCreate(*op, dual));
+  PetscCall(BoltDualSetFromOptions(*dual));
+  PetscCall(BoltDualSetUp(*dual));
+  PetscCall(VecDuplicate(BoltOperatorPreloadVec(*op), q));
+  PetscCall(VecDuplicate(BoltOperatorPreloadVec(*op), rhs));
+  PetscFunctionReturn(0);
+}
+
 /* The FOM's static preloaded equilibrium (the FOM run's if it ran, else solved here): q0, the
    multipliers (per newton of preload) and the active set, then the static response to the scene's load from that state with the
    contact closed by the augmented Lagrangian. The interface-reduced ROM cannot close its gaps
@@ -330,17 +347,9 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(2 + nClosed, &extra));
-  PetscCall(BoltFOMCreate(asmb, c, loads, PETSC_FALSE, &op)); /* static solves only: no damping */
+  PetscCall(ROMOfflineOperator(asmb, c, loads, &op, &dual, &q, &rhs));
   s = BoltOperatorState(op);
-  /* the calibration scales the preload vector and the load response may scale the load: work
-     on copies, the scene's stay as they are */
-  PetscCall(BoltOperatorCopyLoads(op, BoltLoadSetLoad(loads), BoltLoadSetPreload(loads)));
-  PetscCall(BoltDualCreate(op, &dual));
-  PetscCall(BoltDualSetFromOptions(dual));
-  PetscCall(BoltDualSetUp(dual));
-  PetscCall(VecDuplicate(BoltOperatorPreloadVec(op), &q));
-  PetscCall(VecDuplicate(BoltOperatorPreloadVec(op), &rhs));
-  PetscCall(ROMPreloadedStart(asmb, c, loads, rom, op, staticPenaltyScale, shared, q, rhs, &extra[0], preload));
+  PetscCall(ROMPreloadedStart(asmb, c, loads, rom, op, staticPenaltyScale, shared, q, rhs, &extra[0], preload, NULL));
   /* the load on top, from the preloaded state (multipliers warm, active set free to change).
      The contact loop's tolerance is relative to the preload's multipliers, so a load below
      1e-3 of the preload's norm is raised to that (its response then rises above the loop's
@@ -400,6 +409,42 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
   PetscCall(PetscFree(conePairs));
   PetscCall(PetscFree(coneDirs));
   *extrap = extra;
+  PetscCall(VecDestroy(&q));
+  PetscCall(VecDestroy(&rhs));
+  PetscCall(BoltDualDestroy(&dual));
+  PetscCall(BoltOperatorDestroy(&op));
+  PetscFunctionReturn(0);
+}
+
+/* -rom_train static: the points whose state the load changes statically at -/+ the opening scale
+   x its amplitude (under friction also those beyond the cone at -/+ the slip scale), from the
+   FOM's preloaded state (the FOM run's, or solved here and handed back in solved), as the opening
+   shapes mark them; what a FOM run would tell a trained ROM, without that run. */
+PetscErrorCode BoltROMStaticChanges(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, const BoltPreloadState *shared, PetscBool **changed, BoltPreloadState **solved)
+{
+  BoltOperator *op;
+  BoltDual     *dual;
+  Vec           q, rhs, start, preload;
+  PetscInt      npairs, *pairs;
+  PetscReal     nload, npre, raise;
+  Vec          *openK;
+
+  PetscFunctionBeginUser;
+  *solved = NULL;
+  PetscCall(ROMOfflineOperator(asmb, c, loads, &op, &dual, &q, &rhs));
+  PetscCall(ROMPreloadedStart(asmb, c, loads, rom, op, rom->staticPenaltyScale, shared, q, rhs, &start, &preload, shared ? NULL : solved));
+  PetscCall(PetscPrintf(rom->comm, "\n"));
+  PetscCall(VecNorm(BoltOperatorLoadVec(op), NORM_2, &nload));
+  PetscCall(VecNorm(BoltOperatorPreloadVec(op), NORM_2, &npre));
+  raise = nload > 0 ? PetscMax(1.0, 1e-3 * npre / nload) : 1.0; /* as the load response's (BoltROMPreloadSolve) */
+  PetscCall(VecScale(BoltOperatorLoadVec(op), raise));
+  PetscCall(ROMOpeningPairs(asmb, c, rom, op, dual, rom->openingScale, raise, npre, 0, q, rhs, NULL, &npairs, &pairs, &openK));
+  *changed    = rom->marked;
+  rom->marked = NULL;
+  PetscCall(PetscFree(pairs));
+  PetscCall(PetscFree4(rom->lambda0, rom->gap0, rom->active0, rom->released0)); /* made again with the basis's static shapes */
+  PetscCall(VecDestroy(&start));
+  PetscCall(VecDestroy(&preload));
   PetscCall(VecDestroy(&q));
   PetscCall(VecDestroy(&rhs));
   PetscCall(BoltDualDestroy(&dual));

@@ -85,7 +85,7 @@ PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSe
   PetscCall(ROMInputMatrix(contact, loads, BoltLoadSetLoad(loads), free_, B, &rom->ninputs, &npairs));
   PetscCall(PetscFree(free_));
   rom->nOpeningPairs = npairs;
-  PetscCall(PetscPrintf(o->comm, "ROM: trained on the FOM's run: %" PetscInt_FMT " node pairs changed their contact state there or neighbour one that did: they are its inputs; the closed pairs that did not change are tied\n", npairs));
+  PetscCall(PetscPrintf(o->comm, "ROM: trained on %s: %" PetscInt_FMT " node pairs changed their contact state there or neighbour one that did: they are its inputs; the closed pairs that did not change are tied\n", o->trainStatic ? "static solves" : "the FOM's run", npairs));
   PetscCall(ROMPreloadedStiffness(rom, asmb, contact, loads, Kheld));
   PetscFunctionReturn(0);
 }
