@@ -154,9 +154,12 @@ def test_rom_displacement_follows_the_fom(rom_runs):
 def test_rom_only_run_writes_its_displacement(rom_runs):
     """A ROM-only run writes rom_final_displacement and its snapshots, with the ROM read from its file
     (which keeps the whole basis) on any number of ranks, or built in the run. Read back, the ROM
-    gives the built ROM's fields to 1e-8 (measured 1.1e-9, as its probe history), the same on 1
-    and 3 ranks to 1e-8 (measured 8e-16 in most runs, but 1.2e-9 in one of four full-suite runs on
-    a loaded machine: a difference between runs not traced yet, so the bound is the first one's)."""
+    gives the built ROM's fields to 1e-7: since the modal basis (d9c7205) the difference moves from
+    run to run between 1.5e-9 and 1.8e-8 of the largest displacement (eight runs of this fixture,
+    at d9c7205's successor and at the commit after it), the size of the contact loop's tolerance
+    rather than of round-off; where it comes from within one run is not traced. The same file on 1
+    and 3 ranks gives the same fields to 1e-8 (measured 8e-16 in most runs, 1.2e-9 in one of four
+    full-suite runs on a loaded machine)."""
     built, _ = fields(rom_runs / "both" / "run.h5", "rom_")
     scale = max(np.abs(u).max() for u in built.values())
     read = {}
@@ -166,7 +169,7 @@ def test_rom_only_run_writes_its_displacement(rom_runs):
             assert not any(k.startswith("fom_") or k.startswith("snapshot_") for k in f["vertex_fields"])
         read[ranks], _ = fields(path, "rom_")
         assert read[ranks].keys() == built.keys()
-        assert max(np.abs(read[ranks][k] - built[k]).max() for k in built) < 1e-8 * scale
+        assert max(np.abs(read[ranks][k] - built[k]).max() for k in built) < 1e-7 * scale
     assert max(np.abs(read[1][k] - read[3][k]).max() for k in built) < 1e-8 * scale
     alone, _ = fields(rom_runs / "built" / "run.h5", "rom_")
     assert sorted(alone) == ["rom_final_displacement", "rom_snapshot_000000"]  # 20 steps: the start only
