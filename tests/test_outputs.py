@@ -156,7 +156,7 @@ def test_rom_only_run_writes_its_displacement(rom_runs):
     (which keeps the whole basis) on any number of ranks, or built in the run. Read back, the ROM
     gives the built ROM's fields to 1e-7: since the modal basis (d9c7205) the difference moves from
     run to run between 1.5e-9 and 1.8e-8 of the largest displacement (eight runs of this fixture,
-    at d9c7205's successor and at the commit after it), the size of the contact loop's tolerance
+    at e4ea1e8 and 99084c0; 1e-8 failed four of them), the size of the contact loop's tolerance
     rather than of round-off; where it comes from within one run is not traced. The same file on 1
     and 3 ranks gives the same fields to 1e-8 (measured 8e-16 in most runs, 1.2e-9 in one of four
     full-suite runs on a loaded machine)."""
