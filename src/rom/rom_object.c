@@ -52,9 +52,14 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
     PetscBool set;
     PetscCall(PetscOptionsString("-rom_train", "Free where the contact changes, other closed pairs tied; learnt from this run's FOM (fom, or bare; needs -fom true) or static solves at -/+ 2x the load (static)", NULL, from, from, sizeof(from), &set));
     if (set) {
-      const PetscBool fom = (PetscBool)(!from[0] || !strcmp(from, "fom") || !strcmp(from, "true") || !strcmp(from, "1"));
-      o->trainStatic      = (PetscBool)!strcmp(from, "static");
-      PetscCheck(fom || o->trainStatic || !strcmp(from, "false") || !strcmp(from, "0"), comm, PETSC_ERR_USER_INPUT, "-rom_train %s: give fom (learn from this run's FOM) or static (from static solves at -/+ 2 x the load), or false", from);
+      PetscBool fom = (PetscBool)(!from[0] || !strcmp(from, "fom")), off = PETSC_FALSE;
+      if (!fom && strcmp(from, "static")) { /* as a bool, as it once was */
+        PetscCall(PetscStrcasecmp(from, "true", &fom));
+        for (const char *const *t = (const char *const[]){"1", "yes", "on", NULL}; *t && !fom; t++) PetscCall(PetscStrcasecmp(from, *t, &fom));
+        for (const char *const *f = (const char *const[]){"false", "0", "no", "off", NULL}; *f && !off; f++) PetscCall(PetscStrcasecmp(from, *f, &off));
+      }
+      o->trainStatic = (PetscBool)!strcmp(from, "static");
+      PetscCheck(fom || o->trainStatic || off, comm, PETSC_ERR_USER_INPUT, "-rom_train %s: give fom (learn from this run's FOM) or static (from static solves at -/+ 2 x the load), or false", from);
       o->trained = (PetscBool)(fom || o->trainStatic);
     }
   }
