@@ -92,8 +92,9 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
      interface reduction has every node pair's force among its inputs; the stick law's scenes are
      the paper's, whose figures stay as they were) */
   /* ... and none by default with snapshot modes, which carry the openings and slips the FOM made */
-  rom->openingScale = staticShapes && !o->trained ? (o->openingScaleSet ? o->openingScale : (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
-  if (o->trained && o->trainStatic) rom->openingScale = o->openingScale; /* where the changing pairs are looked for; no shapes */
+  /* (a ROM trained on static solves looks for its changing pairs at this scale, and takes no shapes) */
+  if (o->trained) rom->openingScale = staticShapes && o->trainStatic ? o->openingScale : 0;
+  else rom->openingScale = staticShapes ? (o->openingScaleSet ? o->openingScale : (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
   rom->nOpenKrylov  = rom->openingScale > 0 && !o->trained ? o->nOpenKrylov : 0;
   rom->slipScale    = rom->openingScale > 0 && BoltContactSetHasFriction(contact) ? o->slipScale : 0;
   rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) && !o->trained ? o->coneShapes : 0;

@@ -327,6 +327,19 @@ static PetscErrorCode ROMOfflineOperator(BoltAssembler *asmb, BoltContactSet *c,
   PetscFunctionReturn(0);
 }
 
+/* The offline operator's load (its own copy) raised to at least 1e-3 of the preload's norm: the
+   contact loop's tolerance is relative to the preload's multipliers, and a smaller load's response
+   would sink into the loop's residual. nload and npre: the norms before; raise: the factor. */
+static PetscErrorCode ROMRaiseLoad(BoltOperator *op, PetscReal *nload, PetscReal *npre, PetscReal *raise)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecNorm(BoltOperatorLoadVec(op), NORM_2, nload));
+  PetscCall(VecNorm(BoltOperatorPreloadVec(op), NORM_2, npre));
+  *raise = *nload > 0 ? PetscMax(1.0, 1e-3 * *npre / *nload) : 1.0;
+  PetscCall(VecScale(BoltOperatorLoadVec(op), *raise));
+  PetscFunctionReturn(0);
+}
+
 /* The FOM's static preloaded equilibrium (the FOM run's if it ran, else solved here): q0, the
    multipliers (per newton of preload) and the active set, then the static response to the scene's load from that state with the
    contact closed by the augmented Lagrangian. The interface-reduced ROM cannot close its gaps
@@ -356,10 +369,7 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
      residual; with the joint closed the response is linear in the load, and the scale is lost
      in the orthonormalisation anyway) */
   PetscReal nload, npre, raise;
-  PetscCall(VecNorm(BoltOperatorLoadVec(op), NORM_2, &nload));
-  PetscCall(VecNorm(BoltOperatorPreloadVec(op), NORM_2, &npre));
-  raise = nload > 0 ? PetscMax(1.0, 1e-3 * npre / nload) : 1.0;
-  PetscCall(VecScale(BoltOperatorLoadVec(op), raise));
+  PetscCall(ROMRaiseLoad(op, &nload, &npre, &raise));
   PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
   PetscCall(VecAXPY(rhs, 1.0, BoltOperatorLoadVec(op)));
   PetscCall(ROMStaticSolve(rom->rigid, dual, NULL, rhs, q, 0, &nout, &nin));
@@ -434,10 +444,7 @@ PetscErrorCode BoltROMStaticChanges(BoltAssembler *asmb, BoltContactSet *c, Bolt
   PetscCall(ROMOfflineOperator(asmb, c, loads, &op, &dual, &q, &rhs));
   PetscCall(ROMPreloadedStart(asmb, c, loads, rom, op, rom->staticPenaltyScale, shared, q, rhs, &start, &preload, shared ? NULL : solved));
   PetscCall(PetscPrintf(rom->comm, "\n"));
-  PetscCall(VecNorm(BoltOperatorLoadVec(op), NORM_2, &nload));
-  PetscCall(VecNorm(BoltOperatorPreloadVec(op), NORM_2, &npre));
-  raise = nload > 0 ? PetscMax(1.0, 1e-3 * npre / nload) : 1.0; /* as the load response's (BoltROMPreloadSolve) */
-  PetscCall(VecScale(BoltOperatorLoadVec(op), raise));
+  PetscCall(ROMRaiseLoad(op, &nload, &npre, &raise));
   PetscCall(ROMOpeningPairs(asmb, c, rom, op, dual, rom->openingScale, raise, npre, 0, q, rhs, NULL, &npairs, &pairs, &openK));
   *changed    = rom->marked;
   rom->marked = NULL;
