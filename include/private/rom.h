@@ -48,6 +48,10 @@ PetscErrorCode ROMHeldTractions(BoltOperator *op, Vec q, Vec v, Vec a, PetscReal
 PetscErrorCode ROMGetBasis(BoltROM *rom, BV *V);
 PetscErrorCode ROMTrainedSettings(BoltROM *rom, BoltLoadSet *loads);
 PetscErrorCode BoltROMStaticChanges(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, const BoltPreloadState *shared, PetscBool **changed, BoltPreloadState **solved);
+PetscErrorCode ROMAutoChoose(BoltROM *, BoltAssembler *, BoltContactSet *, BoltLoadSet *);
+PetscErrorCode ROMSwitchTied(BoltROM *, BoltAssembler *, BoltContactSet *, BoltLoadSet *);
+PetscErrorCode ROMAutoRelease(BoltROM *);
+PetscErrorCode ROMAutoTake(BoltROM *, PetscBool **, BoltPreloadState **);
 PetscErrorCode ROMTrainedInputs(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads, BV *B, Mat *Kheld);
 PetscErrorCode ROMOnlineDestroy(BoltROM *rom);
 PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet *loads, const char file[]);
@@ -104,6 +108,7 @@ struct _n_BoltReductionOptions {
   PetscBool  trained;                       /* -rom_train: inputs where the contact changes, the other closed pairs tied (trained.c) */
   PetscBool  trainStatic;                   /* -rom_train static: where it changes from static solves of the preloaded joint, not the FOM's run */
   const PetscBool *fomChanged;              /* the FOM's run: per local contact point, its state left the preloaded one */
+  PetscBool  trainAuto;                     /* -rom_train auto (the default): tied if static solves change no pair, else as none */
 };
 
 struct _n_BoltROMFingerprint {
@@ -240,6 +245,11 @@ struct _n_BoltROM {
      and of the preload at the tied pairs' DOFs this rank owns, for the ties' forces */
   struct BoltROMTieCheck_s *tie;
   const BoltPreloadState   *solvedPreload; /* -rom_train static without a FOM run: the preloaded state solved offline, while the build uses it */
+  /* -rom_train auto: whether the static solves made it the tied ROM; their marks and the state
+     they solved (no FOM in the run), handed to the build */
+  PetscBool         autoTied;
+  PetscBool        *autoChanged;
+  BoltPreloadState *autoSolved;
 };
 
 #endif

@@ -271,6 +271,10 @@ PetscErrorCode BoltROMSave(BoltROM *rom, BV V, BoltAssembler *asmb, BoltLoadSet 
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "n_ccm", PETSC_INT, &rom->nCCM));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "n_jim", PETSC_INT, &rom->nJIM));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "opening_pairs", PETSC_INT, &rom->nOpeningPairs));
+  {
+    PetscInt tied = rom->autoTied ? 1 : 0; /* -rom_train auto made it the tied ROM */
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "auto_tied", PETSC_INT, &tied));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "snapshot_modes", PETSC_INT, &rom->nSnapshotModes));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "cone_pairs", PETSC_INT, &rom->nConePairs));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/rom/Mr", "cone_modes", PETSC_INT, &rom->nConeModes));
@@ -368,10 +372,12 @@ PetscErrorCode BoltROMLoad(const char file[], BoltROM *rom, BoltContactSet *c, B
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "n_jim", PETSC_INT, NULL, &rom->nJIM));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "opening_pairs", PETSC_INT, NULL, &rom->nOpeningPairs));
   {
-    PetscInt none = 0; /* files written before the modes existed have none */
+    PetscInt none = 0, tied = 0; /* files written before the modes existed have none */
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "snapshot_modes", PETSC_INT, &none, &rom->nSnapshotModes));
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "cone_pairs", PETSC_INT, &none, &rom->nConePairs));
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "cone_modes", PETSC_INT, &none, &rom->nConeModes));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "auto_tied", PETSC_INT, &none, &tied));
+    rom->autoTied = (PetscBool)(tied != 0);
   }
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "s0", PETSC_REAL, NULL, &rom->s0));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/Mr", "point_groups", PETSC_STRING, NULL, &groups));

@@ -48,19 +48,21 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
     PetscCheck(!set || o->file[0], comm, PETSC_ERR_USER_INPUT, "-rom_rebuild %s replaces a -rom_file that does not match the scene, but -rom_file is empty: give -rom_file %s to build the ROM into that file", o->rebuildFile, o->rebuildFile);
   }
   {
-    char      from[16] = "false";
+    char      from[16] = "auto";
     PetscBool set;
-    PetscCall(PetscOptionsString("-rom_train", "Free where the contact changes, other closed pairs tied; learnt from this run's FOM (fom, or bare; needs -fom true) or static solves at -/+ 2x the load (static)", NULL, from, from, sizeof(from), &set));
-    if (set) {
-      PetscBool fom = (PetscBool)(!from[0] || !strcmp(from, "fom")), off = PETSC_FALSE;
-      if (!fom && strcmp(from, "static")) { /* as a bool, as it once was */
+    PetscCall(PetscOptionsString("-rom_train", "auto: tied if static solves at -/+ 2x the load change no pair, else none; none: the paper's ROM; fom: free where the FOM changes, static: where those solves do", NULL, from, from, sizeof(from), &set));
+    o->trainAuto = PETSC_TRUE;
+    if (set && strcmp(from, "auto")) {
+      PetscBool fom = (PetscBool)(!from[0] || !strcmp(from, "fom")), off = (PetscBool)!strcmp(from, "none");
+      if (!fom && !off && strcmp(from, "static")) { /* as a bool, as it once was */
         PetscCall(PetscStrcasecmp(from, "true", &fom));
         for (const char *const *t = (const char *const[]){"1", "yes", "on", NULL}; *t && !fom; t++) PetscCall(PetscStrcasecmp(from, *t, &fom));
         for (const char *const *f = (const char *const[]){"false", "0", "no", "off", NULL}; *f && !off; f++) PetscCall(PetscStrcasecmp(from, *f, &off));
       }
       o->trainStatic = (PetscBool)!strcmp(from, "static");
-      PetscCheck(fom || o->trainStatic || off, comm, PETSC_ERR_USER_INPUT, "-rom_train %s: give fom (learn from this run's FOM) or static (from static solves at -/+ 2 x the load), or false", from);
-      o->trained = (PetscBool)(fom || o->trainStatic);
+      PetscCheck(fom || o->trainStatic || off, comm, PETSC_ERR_USER_INPUT, "-rom_train %s: give auto (the default), none (the paper's ROM), fom (learn from this run's FOM) or static (from static solves at -/+ 2 x the load)", from);
+      o->trained   = (PetscBool)(fom || o->trainStatic);
+      o->trainAuto = PETSC_FALSE;
     }
   }
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
@@ -177,7 +179,12 @@ PetscErrorCode BoltROMSetUp(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *c
   PetscCall(PetscTime(&t0));
   PetscCall(ROMResolveSettings(rom, asmb, contact, loads));
   if (rom->opt.file[0]) PetscCall(ROMReuseFile(rom, contact, loads, t0, &reused));
-  if (!reused) PetscCall(ROMBuild(rom, asmb, contact, loads, t0));
+  if (reused && rom->autoTied) PetscCall(ROMSwitchTied(rom, asmb, contact, loads)); /* a file auto made tied */
+  if (!reused) {
+    PetscCall(ROMAutoChoose(rom, asmb, contact, loads));
+    PetscCall(ROMBuild(rom, asmb, contact, loads, t0));
+    PetscCall(ROMAutoRelease(rom));
+  }
   PetscCall(ROMResolveOnline(rom, contact));
   if (rom->opt.trained) PetscCall(ROMTieCheckSetUp(rom, asmb, loads)); /* its ties' forces, for the check */
   PetscCall(BoltROMSetTraining(rom, NULL, 0, NULL, NULL)); /* the caller frees them */
@@ -228,6 +235,7 @@ PetscErrorCode BoltROMSummaryWrite(BoltROM *rom, BoltJSON *j)
   PetscCall(BoltJSONReal(j, "contact_band_scale", rom->bandScale));
   PetscCall(BoltJSONInt(j, "trained", rom->opt.trained));
   PetscCall(BoltJSONString(j, "trained_on", !rom->opt.trained ? "" : rom->opt.trainStatic ? "static solves" : "the FOM's run"));
+  PetscCall(BoltJSONInt(j, "auto_tied", rom->autoTied)); /* -rom_train auto chose the tied ROM */
   PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
   PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
   PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));

@@ -1,5 +1,6 @@
 /* The ROM's settings: every default of the reduction resolved from its options and the scene,
-   the fingerprint of what the basis depends on, and the reuse of a matching ROM file. */
+   the fingerprint of what the basis depends on, the reuse of a matching ROM file, and the
+   default's choice of the tied ROM (-rom_train auto). */
 #include "private/rom.h"
 #include "private/boltrom_krylov.h"
 #include <petscviewerhdf5.h>
@@ -39,7 +40,7 @@ static PetscErrorCode ROMFingerprintShapes(BoltReductionOptions *o, BoltROM *rom
   BoltROMFingerprint *fp = &rom->fingerprint;
 
   PetscFunctionBeginUser;
-  PetscCall(BoltROMFingerprintInt(fp, "trained", o->trained ? (o->trainStatic ? 2 : 1) : 0)); /* 2: from static solves */
+  PetscCall(BoltROMFingerprintInt(fp, "trained", o->trainAuto ? 3 : o->trained ? (o->trainStatic ? 2 : 1) : 0)); /* 2: from static solves; 3: auto */
   PetscCall(BoltROMFingerprintString(fp, "static_shapes", !staticShapes ? "none" : rom->preloadState ? "preload state" : "static shapes"));
   PetscCall(BoltROMFingerprintInt(fp, "closed_krylov", staticShapes ? o->nClosed : 0));
   PetscCall(BoltROMFingerprintInt(fp, "closed_krylov_keep_active", staticShapes && o->nClosed > 0 ? o->closedKeepActive : 0));
@@ -212,5 +213,76 @@ PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact)
   rom->holdUnmarked   = ROMDefaultHold(o, contact);
   rom->gapsEverywhere = o->gapsEverywhere;
   rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (BoltContactSetIsComplementarity(contact) && !rom->augment ? (3 * rom->n) / 5 : 0);
+  PetscFunctionReturn(0);
+}
+
+/* -rom_train auto, the default: the static solves that mark the opening shapes' node pairs (at
+   -/+ the opening scale x the load) are made first. Where they change no point, the joint is
+   linear over the load's range as far as statics can tell, and the ROM is the tied one: the
+   trained construction with no pair free, every pair checked online (paper-step at levels 0.6
+   and 0.7: e_L2 6e-4 instead of the paper's 5e-2; docs/decisions.md). Elsewhere it is the
+   paper's ROM with its opening shapes. Not under friction, where the dynamic response slips
+   pairs that static solves leave sticking (docs/decisions.md, the held points), nor with
+   snapshot modes. The fingerprint stays the request's (auto), so a later default run reuses the
+   file whichever it became; a tied build takes over the marks and the state solved. */
+PetscErrorCode ROMAutoChoose(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads)
+{
+  BoltReductionOptions *o  = &rom->opt;
+  const PetscInt        np = 4 * BoltContactSetElementCount(contact);
+  PetscInt              nchanged = 0;
+
+  PetscFunctionBeginUser;
+  rom->autoTied = PETSC_FALSE;
+  if (!o->trainAuto || o->trained || rom->openingScale <= 0 || BoltContactSetHasFriction(contact) || o->nSnapshotModes > 0) PetscFunctionReturn(0);
+  if (BoltLoadSetBoltCount(loads) && !o->fomPreload) PetscFunctionReturn(0); /* (the build says why it needs the FOM) */
+  if (BoltMeshIsFree(BoltContactSetMesh(contact)) && !rom->rigid) PetscCall(BoltAssemblerRigidModes(asmb, &rom->rigid)); /* their inertia relief */
+  PetscCall(BoltROMStaticChanges(asmb, contact, loads, rom, o->fomPreload, &rom->autoChanged, &rom->autoSolved));
+  for (PetscInt i = 0; i < np; i++) nchanged += rom->autoChanged[i] ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nchanged, 1, MPIU_INT, MPI_SUM, rom->comm));
+  if (nchanged > 0) { /* the paper's ROM, built as without auto (the same bits): it solves its own preloaded state */
+    PetscCall(ROMAutoRelease(rom));
+    PetscCall(PetscPrintf(rom->comm, "ROM: -rom_train auto: the static solves change %" PetscInt_FMT " contact points: the paper's ROM with its opening shapes\n", nchanged));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscPrintf(rom->comm, "ROM: -rom_train auto: the static solves change no contact point: the tied ROM (every closed pair tied, each checked online; -rom_train none for the paper's)\n"));
+  PetscCall(ROMSwitchTied(rom, asmb, contact, loads));
+  PetscFunctionReturn(0);
+}
+
+/* The tied ROM's settings in place of the paper's (chosen by auto now, or read from a file that
+   auto made so), under the request's fingerprint. */
+PetscErrorCode ROMSwitchTied(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads)
+{
+  BoltROMFingerprint *keep;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(1, &keep));
+  *keep                = rom->fingerprint;
+  rom->opt.trained     = PETSC_TRUE;
+  rom->opt.trainStatic = PETSC_TRUE;
+  PetscCall(ROMResolveSettings(rom, asmb, contact, loads));
+  rom->fingerprint = *keep;
+  rom->autoTied    = PETSC_TRUE;
+  PetscCall(PetscFree(keep));
+  PetscFunctionReturn(0);
+}
+
+/* The marks and the state auto solved, handed to the build of the tied ROM. */
+PetscErrorCode ROMAutoTake(BoltROM *rom, PetscBool **changed, BoltPreloadState **solved)
+{
+  PetscFunctionBeginUser;
+  *changed         = rom->autoChanged;
+  *solved          = rom->autoSolved;
+  rom->autoChanged = NULL;
+  rom->autoSolved  = NULL;
+  PetscFunctionReturn(0);
+}
+
+/* What auto made and no build took over. */
+PetscErrorCode ROMAutoRelease(BoltROM *rom)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BoltPreloadStateDestroy(&rom->autoSolved));
+  PetscCall(PetscFree(rom->autoChanged));
   PetscFunctionReturn(0);
 }
