@@ -185,6 +185,22 @@ def test_rom_auto_file_serves_default_runs_only(joint_l06, tmp_path):
     assert rom_file.read_bytes() == before
 
 
+def test_rom_auto_where_static_solves_change_points_is_the_papers_rom(joint_small, tmp_path):
+    """Paper-step at level 0.5: the static solves change 8 contact points there, so the default
+    (-rom_train auto) builds the paper's interface-reduced ROM, and builds it as -rom_train none
+    does: with the FOM's preloaded state shared, the two ROM histories have the same bits."""
+    mesh, _ = joint_small
+    base = ["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-ts_end", "0.005",
+            "-rom_file", "", "-output", "true", "-fom", "true", "-rom", "true"]
+    hist = {}
+    for name, extra in (("auto", []), ("none", ["-rom_train", "none"])):
+        d = tmp_path / name
+        s = run_summary(base + ["-output_dir", d] + extra, d, ranks=1)
+        assert s["rom"]["auto_tied"] == 0 and s["rom"]["trained"] == 0 and s["rom"]["n_ccm"] > 0
+        hist[name] = probe_of(d)["rom"]
+    assert np.abs(hist["auto"]).max() > 0 and np.array_equal(hist["auto"], hist["none"])
+
+
 def test_rom_train_refuses_an_unknown_source(joint_small, tmp_path):
     mesh, _ = joint_small
     proc = run_boltrom(["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-rom_train", "statics",
