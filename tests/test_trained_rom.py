@@ -181,7 +181,7 @@ def test_rom_auto_file_serves_default_runs_only(joint_l06, tmp_path):
     assert np.abs(a - b).max() <= 1e-7 * np.abs(a).max()
     before = rom_file.read_bytes()
     proc = run_boltrom(base + ["-fom", "false", "-rom_train", "none", "-output_dir", tmp_path / "c"], check=False)
-    assert proc.returncode != 0 and "trained" in proc.stderr, proc.stderr
+    assert proc.returncode != 0 and "trained: the file has 3 (auto), the scene 0 (-rom_train none)" in proc.stderr, proc.stderr
     assert rom_file.read_bytes() == before
 
 

@@ -227,8 +227,10 @@ PetscErrorCode BoltROMFingerprintMatch(const BoltROMFingerprint *fp, PetscViewer
       PetscInt i;
       PetscCall(PetscViewerHDF5ReadAttribute(v, "/rom/fingerprint", f->key, PETSC_INT, NULL, &i));
       if (i != f->i) {
-        const char *older = !strcmp(f->key, "format") && i < f->i ? ": an older boltrom wrote it" : "";
-        PetscCall(PetscSNPrintf(why, len, "%s: the file has %" PetscInt_FMT ", the scene %" PetscInt_FMT "%s", f->key, i, f->i, older));
+        static const char *const train[] = {" (-rom_train none)", " (fom)", " (static)", " (auto)"}; /* the trained field's values */
+        const PetscBool   named   = (PetscBool)(!strcmp(f->key, "trained") && i >= 0 && i < 4 && f->i >= 0 && f->i < 4);
+        const char       *older   = !strcmp(f->key, "format") && i < f->i ? ": an older boltrom wrote it" : "";
+        PetscCall(PetscSNPrintf(why, len, "%s: the file has %" PetscInt_FMT "%s, the scene %" PetscInt_FMT "%s%s", f->key, i, named ? train[i] : "", f->i, named ? train[f->i] : "", older));
         PetscFunctionReturn(0);
       }
     } else if (f->type == PETSC_REAL) {
