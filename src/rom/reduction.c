@@ -305,7 +305,6 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     rom->nJIM     = ir->rankJIM;
   } else if (o->trained) {
     if (o->trainStatic) { /* where the contact changes from static solves, in place of the FOM run's record */
-      if (BoltMeshIsFree(BoltContactSetMesh(contact)) && !rom->rigid) PetscCall(BoltAssemblerRigidModes(asmb, &rom->rigid)); /* their inertia relief */
       if (rom->autoTied) PetscCall(ROMAutoTake(rom, &staticChanged, &solvedPreload)); /* -rom_train auto made them */
       else PetscCall(BoltROMStaticChanges(asmb, contact, loads, rom, o->fomPreload, &staticChanged, &solvedPreload));
       o->fomChanged = staticChanged;

@@ -235,7 +235,6 @@ PetscErrorCode ROMAutoChoose(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *
   rom->autoTied = PETSC_FALSE;
   if (!o->trainAuto || o->trained || rom->openingScale <= 0 || BoltContactSetHasFriction(contact) || o->nSnapshotModes > 0) PetscFunctionReturn(0);
   if (BoltLoadSetBoltCount(loads) && !o->fomPreload) PetscFunctionReturn(0); /* (the build says why it needs the FOM) */
-  if (BoltMeshIsFree(BoltContactSetMesh(contact)) && !rom->rigid) PetscCall(BoltAssemblerRigidModes(asmb, &rom->rigid)); /* their inertia relief */
   PetscCall(BoltROMStaticChanges(asmb, contact, loads, rom, o->fomPreload, &rom->autoChanged, &rom->autoSolved));
   for (PetscInt i = 0; i < np; i++) nchanged += rom->autoChanged[i] ? 1 : 0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nchanged, 1, MPIU_INT, MPI_SUM, rom->comm));

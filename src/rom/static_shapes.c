@@ -441,6 +441,7 @@ PetscErrorCode BoltROMStaticChanges(BoltAssembler *asmb, BoltContactSet *c, Bolt
 
   PetscFunctionBeginUser;
   *solved = NULL;
+  if (BoltMeshIsFree(BoltContactSetMesh(c)) && !rom->rigid) PetscCall(BoltAssemblerRigidModes(asmb, &rom->rigid)); /* the solves' inertia relief, kept for the basis */
   PetscCall(ROMOfflineOperator(asmb, c, loads, &op, &dual, &q, &rhs));
   PetscCall(ROMPreloadedStart(asmb, c, loads, rom, op, rom->staticPenaltyScale, shared, q, rhs, &start, &preload, shared ? NULL : solved));
   PetscCall(PetscPrintf(rom->comm, "\n"));
