@@ -211,8 +211,8 @@ def test_snapshot_modes_of_one_amplitude_carry_the_rom_at_another(joint_small, t
     """-rom_snapshot_modes: the paper's ROM with POD modes of a FOM run's snapshots instead of
     slip shapes. Trained beside a FOM under a 300 N sine along x (50 Hz, 5 kN, level 0.5, 8 ms),
     its file (dimension 231: 80 modes) then runs a 100 N sine: it follows that FOM to 1e-3 and its
-    dissipation to 2 % (measured 4.5e-5 and 0.65 %), where the same basis without the modes
-    (dimension 151) is more than ten times as far off (measured 1.7e-2)."""
+    dissipation to 2 % (measured 4.5e-5 and 0.65 %); the same basis without the modes (dimension
+    151) was 1.7e-2 off."""
     mesh, _ = joint_small
     scene = ["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-ts_end", "0.008",
              "-preload_force", "5000", "-load_history", "sine", "-load_frequency", "50", "-load_direction", "1,0,0",
@@ -221,21 +221,14 @@ def test_snapshot_modes_of_one_amplitude_carry_the_rom_at_another(joint_small, t
     train = run_summary(scene + ["-load_force", "300", "-snapshot_every", "1", "-rom_snapshot_modes", "100",
                                  "-rom_file", tmp_path / "rom.h5", "-output_dir", tmp_path / "train"], tmp_path / "train")
     assert train["rom"]["source"] == "built"
-    result = {}
-    for name, extra in (("modes", ["-rom_snapshot_modes", "100", "-rom_file", tmp_path / "rom.h5"]),
-                        ("none", ["-rom_opening_shapes", "0", "-rom_contact_band_scale", "1", "-rom_file", ""])):
-        s = run_summary(scene + ["-load_force", "100", "-output_dir", tmp_path / name] + extra, tmp_path / name)
-        with h5py.File(tmp_path / name / "run.h5") as f:
-            fom, rom = float(f["fom/dissipated"][-1]), float(f["rom/dissipated"][-1])
-        result[name] = (s, fom, rom)
-    s, fom, rom = result["modes"]
+    d = tmp_path / "modes"
+    s = run_summary(scene + ["-load_force", "100", "-output_dir", d, "-rom_snapshot_modes", "100", "-rom_file", tmp_path / "rom.h5"], d)
+    with h5py.File(d / "run.h5") as f:
+        fom, rom = float(f["fom/dissipated"][-1]), float(f["rom/dissipated"][-1])
     assert s["rom"]["source"] == "file" and s["rom"]["dim"] == train["rom"]["dim"]
     assert s["rom"]["snapshot_modes"] == train["rom"]["snapshot_modes"]  # the count kept through the file
     assert 70 <= train["rom"]["snapshot_modes"] <= 80  # at most one per step (measured 80)
-    assert result["none"][0]["rom"]["snapshot_modes"] == 0
-    assert s["rom"]["dim"] > result["none"][0]["rom"]["dim"] + 50
     assert s["errors"]["load_point"]["e_L2"] < 1e-3 and rom == pytest.approx(fom, rel=0.02)
-    assert result["none"][0]["errors"]["load_point"]["e_L2"] > 10 * s["errors"]["load_point"]["e_L2"]
     assert s["rom"]["failures"] == 0 and s["fom"]["failures"] == 0
 
 

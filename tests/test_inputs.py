@@ -1,4 +1,5 @@
 """Bad input: one line naming the problem and the fix, a non-zero exit, no output left behind."""
+import re
 import subprocess
 
 import pytest
@@ -89,9 +90,25 @@ def test_help_lists_options():
                 "-rayleigh_alpha", "-rayleigh_beta", "-contact_penalty_factor", "-load_group", "-load_force",
                 "-preload_force", "-probe_group", "-output_dir", "-summary", "-modal_nev", "-static_ksp_type",
                 "-modal_eps_nev", "-ts_dt", "-contact_inner", "-contact_cycle_close", "-krylov_order", "-krylov_s0", "-rom_n_ccm", "-rom_file",
-                "-rom_contact_augment", "-rom_preload_state", "-rom_contact_penalty_scale", "-rom_contact_band_scale", "-rom_closed_krylov", "-rom_closed_keep_active", "-rom_static_shapes", "-rom_opening_shapes", "-rom_opening_krylov", "-rom_cone_shapes", "-rom_cone_traction", "-rom_cone_modes", "-rom_update_rank", "-rom_hold_unmarked",
+                "-rom_rebuild", "-rom_train", "-rom_allow_foreign_load", "-rom_cone_shapes", "-rom_cone_traction",
+                "-rom_cone_modes", "-rom_snapshot_modes", "-rom_verify", "-rom_view",
                 "-export_matrices"):
         assert opt in proc.stdout, opt
+
+
+ROM_OPTIONS = {"-rom_file", "-rom_rebuild", "-rom_train", "-rom_n_ccm", "-rom_n_jim", "-rom_allow_foreign_load",
+               "-rom_cone_shapes", "-rom_cone_traction", "-rom_cone_modes", "-rom_snapshot_modes",
+               "-rom_verify", "-rom_view"}
+
+
+def test_help_lists_the_rom_options_and_no_other():
+    """The reduced model's own options (-rom_*, beside the prefix -rom_ of its PETSc solver) are
+    these and no others: a new one, or one that comes back, fails here until it is added on
+    purpose (docs/options.md; the construction's fixed settings are in docs/decisions.md)."""
+    proc = run_boltrom(["-help"])
+    names = set(re.findall(r"^\s*(-rom_[a-z0-9_]+)", proc.stdout, re.M))
+    names = {n for n in names if not n.startswith(("-rom_ksp_", "-rom_pc_"))}
+    assert names == ROM_OPTIONS, sorted(names ^ ROM_OPTIONS)
 
 
 def test_truncated_mesh_file(beam, tmp_path):
@@ -121,16 +138,12 @@ def test_bad_time_step(joint_small, tmp_path, args, words):
 
 
 @pytest.mark.parametrize("args, words", [
-    (["-rom_n_ccm", "0", "-rom_n_jim", "0", "-rom_preload_state", "true"], ["-rom_preload_state", "penalty law"]),
-    (["-rom_contact_penalty_scale", "-2"], ["-rom_contact_penalty_scale", "> 0"]),
-    (["-rom_contact_band_scale", "-1"], ["-rom_contact_band_scale", "> 0"]),
-    (["-rom_opening_shapes", "-1"], ["-rom_opening_shapes", ">= 0"]),
+    (["-rom_contact_penalty_scale", "2"], ["-rom_contact_penalty_scale", "no longer an option", "docs/decisions.md"]),
+    (["-rom_update_rank", "0"], ["-rom_update_rank", "no longer an option", "-rom_verify"]),
     (["-rom_cone_shapes", "1.5"], ["-rom_cone_shapes", "within [0, 1]"]),
     (["-rom_cone_shapes", "0.999"], ["-rom_cone_shapes", "-contact_law coulomb"]),
     (["-rom_cone_modes", "-1"], ["-rom_cone_modes", ">= 0"]),
     (["-contact_law", "coulomb", "-rom_cone_modes", "50"], ["-rom_cone_modes", "-rom_cone_shapes", "-rom_snapshot_modes"]),
-    (["-rom_update_rank", "-2"], ["-rom_update_rank", ">= 0"]),
-    (["-rom_closed_krylov", "17"], ["-rom_closed_krylov", "between 0 and 16"]),
 ])
 def test_bad_rom_contact_options(joint_small, tmp_path, args, words):
     mesh, _ = joint_small

@@ -44,6 +44,7 @@ PetscErrorCode BoltROMDestroy(BoltROM **);
 PetscErrorCode BoltROMGetFile(BoltROM *, const char *[], const char *[]);
 PetscErrorCode BoltROMCheckFile(BoltROM *, BoltAssembler *, BoltContactSet *, BoltLoadSet *);
 PetscErrorCode BoltROMGetSnapshotModes(BoltROM *, PetscInt *);
+PetscBool      BoltROMVerifies(BoltROM *);
 PetscErrorCode BoltROMCheckFileIntact(BoltROM *, PetscBool *);
 PetscErrorCode BoltROMOperatorCreate(BoltROM *, BoltOperator **);
 PetscErrorCode BoltROMSetPreloadState(BoltROM *, BoltNewmark *, PetscReal);

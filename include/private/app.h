@@ -25,7 +25,7 @@ struct _n_BoltRunOptions {
   char      outputDir[PETSC_MAX_PATH_LEN];
   char      outputName[BOLTROM_NAME_LEN];
   char      summary[PETSC_MAX_PATH_LEN];
-  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom, rom, romCheckS0;
+  PetscBool staticSolve, verifyFields, checkRigid, writeOutput, fom, rom;
   char      exportDir[PETSC_MAX_PATH_LEN]; /* tied K and M, full and reduced, for petsc4py */
   PetscInt  verifyField;                   /* 0 smooth, 1 linear */
   PetscInt  nev;

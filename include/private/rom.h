@@ -80,28 +80,23 @@ struct _n_BoltReductionOptions {
   char       file[PETSC_MAX_PATH_LEN];
   char       rebuildFile[PETSC_MAX_PATH_LEN]; /* -rom_rebuild: where a ROM built in place of a -rom_file that does not match (or is damaged) goes; empty: refuse */
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
+  PetscBool  verify;        /* -rom_verify: the checks below, and the online shortcuts replaced by the plain way */
   PetscBool  checkOrthogonality;
-  PetscBool  augment, augmentSet; /* -rom_contact_augment, if given (else the law follows the reduction) */
-  PetscBool  preloadState, preloadStateSet; /* -rom_preload_state */
-  PetscReal  penaltyScale;                  /* -rom_contact_penalty_scale, or 0 for the default */
-  PetscReal  bandScale;                     /* -rom_contact_band_scale, or 0 for the default */
-  PetscInt   nClosed;                       /* -rom_closed_krylov */
-  PetscReal  staticPenaltyScale;            /* -rom_static_penalty_scale */
-  PetscBool  closedKeepActive;              /* -rom_closed_keep_active */
-  PetscBool  staticShapes;                  /* -rom_static_shapes */
-  PetscReal  openingScale;                  /* -rom_opening_shapes: the load's scale whose changed pairs get shapes, 0 none */
-  PetscBool  openingScaleSet;               /* given (else the law's default) */
-  PetscReal  slipScale;                     /* -rom_slip_shapes: friction, the load's scale whose pairs beyond the cone get shapes */
-  PetscReal  coneShapes;                    /* -rom_cone_shapes: friction, the pairs at this fraction of the cone in the preloaded state get shapes, 0 none */
-  PetscBool  coneTraction;                  /* -rom_cone_traction */
-  PetscInt   coneModes;                     /* -rom_cone_modes: the cone shapes compressed to this many per direction, 0 a shape per pair */
-  PetscInt   updateRank;                    /* -rom_update_rank: largest low-rank update of the online factorisation, -1 default */
-  PetscBool  holdUnmarked;                  /* -rom_hold_unmarked */
-  PetscBool  holdUnmarkedSet;               /* given (else true, but false under friction) */
-  PetscBool  gapsEverywhere;                /* -rom_gaps_everywhere */
-  PetscInt   nOpenKrylov;                   /* -rom_opening_krylov */
+  /* the construction's fixed settings (rom_object.c), resolved by SetUp */
+  PetscBool  preloadState;       /* penalty-law ROM: start from the FOM's preloaded state */
+  PetscInt   nClosed;            /* closed-contact Krylov vectors */
+  PetscBool  closedKeepActive;   /* the closed-contact Krylov vectors keep the preloaded active set */
+  PetscBool  staticShapes;       /* the augmented ROM gets the static shapes too */
+  PetscReal  openingScale;       /* the load's scale whose changed pairs get opening shapes */
+  PetscReal  slipScale;          /* friction: the load's scale whose pairs beyond the cone get shapes */
+  PetscReal  coneShapes;         /* -rom_cone_shapes: friction, the pairs at this fraction of the cone in the preloaded state get shapes, 0 none */
+  PetscBool  coneTraction;       /* -rom_cone_traction */
+  PetscInt   coneModes;          /* -rom_cone_modes: the cone shapes compressed to this many per direction, 0 a shape per pair */
+  PetscInt   updateRank;         /* largest low-rank update of the online factorisation, -1 default, 0 (-rom_verify) refactorise */
+  PetscBool  gapsEverywhere;     /* -rom_verify: every point's gaps at every solve */
+  PetscInt   nOpenKrylov;        /* opened-joint Krylov vectors */
   PetscInt   nSnapshotModes;                /* -rom_snapshot_modes: POD modes of the FOM's snapshots of this run, 0 none */
-  PetscReal  snapshotTol;                   /* -rom_snapshot_tol: their smallest singular value, relative */
+  PetscReal  snapshotTol;                   /* the snapshot modes' smallest singular value, relative */
   const BoltPreloadState *fomPreload;       /* the FOM's preloaded state of this run, or NULL */
   PetscInt   nFomSnapshots;                 /* the FOM's displacement snapshots of this run (-snapshot_every) */
   Vec       *fomSnapshots;
@@ -206,10 +201,10 @@ struct _n_BoltROM {
   PetscInt        nConePairs;    /* friction: node pairs with cone shapes in the basis */
   PetscInt        nConeModes;    /* friction: the cone shapes in the basis when compressed (-rom_cone_modes), else 0 */
   PetscBool      *marked;        /* 4 per local contact element: the point's state changed in those static solves (NULL: not made) */
-  PetscBool       holdUnmarked;  /* -rom_hold_unmarked: online, the other points keep their preloaded state */
-  PetscBool       gapsEverywhere; /* -rom_gaps_everywhere: every point's gaps at every solve (a check) */
+  PetscBool       holdUnmarked;  /* online, the other points keep their preloaded state */
+  PetscBool       gapsEverywhere; /* -rom_verify: every point's gaps at every solve */
   PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
-  PetscInt        updateRank;    /* -rom_update_rank as given (-1: the default) */
+  PetscInt        updateRank;    /* -1: the default; 0 (-rom_verify): refactorise */
   PetscInt        updateRankUsed; /* as resolved when the operator was made (0: refactorise) */
   struct BoltROMUpdate_s *update; /* low-rank updates of the online factorisation (rom_update.c), or NULL */
   /* F_r = sum_p D_p' F_p over node pairs p (D_p: the pair's three rows of D = V_b - V_a, F_p the

@@ -53,7 +53,7 @@ static PetscErrorCode BoltRunSetUp(BoltRun *r)
   s->nev         = r->opt.nev;
   s->modalContact = r->opt.modalContact;
   s->checkRigid  = r->opt.checkRigid;
-  s->romCheckS0  = r->opt.romCheckS0;
+  s->romCheckS0  = (PetscBool)(r->opt.rom && BoltROMVerifies(r->rom));
   PetscFunctionReturn(0);
 }
 

@@ -21,6 +21,31 @@ static const char *const boltExitOptions[] = {"options_left", NULL};
    options of DMPlex's mesh reader. */
 static const char *const boltSetUpOptions[] = {"contact_*_penalty_factor", "contact_*_friction", "dm_plex_*", NULL};
 
+/* Options that are gone: the ROM's construction fixes what they set (docs/decisions.md, "The
+   construction's fixed settings"), and its checks are one option. A scene that still names one is told so. */
+static const char *const boltRetiredOptions[][2] = {
+  {"rom_check_s0", "-rom_verify makes this check with the others"}, {"rom_check_orthogonality", "-rom_verify makes this check with the others"},
+  {"rom_gaps_everywhere", "-rom_verify takes every gap, with its other checks"}, {"rom_update_rank", "-rom_verify refactorises at every change, with its other checks"},
+  {"rom_preload_state", NULL}, {"rom_contact_penalty_scale", NULL}, {"rom_contact_band_scale", NULL},
+  {"rom_closed_krylov", NULL}, {"rom_closed_keep_active", NULL}, {"rom_static_penalty_scale", NULL},
+  {"rom_static_shapes", NULL}, {"rom_opening_shapes", NULL}, {"rom_opening_krylov", NULL},
+  {"rom_slip_shapes", NULL}, {"rom_hold_unmarked", NULL}, {"rom_snapshot_tol", NULL},
+  {"rom_contact_augment", "the ROM follows -contact_augment without interface reduction, and the penalty law with it"},
+  {NULL, NULL}};
+
+static PetscErrorCode BoltOptionCheckRetired(MPI_Comm comm, const char name[])
+{
+  PetscBool same;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; boltRetiredOptions[i][0]; i++) {
+    PetscCall(PetscStrcasecmp(name, boltRetiredOptions[i][0], &same));
+    PetscCheck(!same || boltRetiredOptions[i][1], comm, PETSC_ERR_USER_INPUT, "-%s is no longer an option: the ROM's construction fixes it (docs/decisions.md); remove it from the scene", name);
+    PetscCheck(!same, comm, PETSC_ERR_USER_INPUT, "-%s is no longer an option: %s; remove it from the scene", name, boltRetiredOptions[i][1]);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* name matches pattern ('*': any run of characters), ignoring case as PETSc's options do */
 static PetscErrorCode BoltGlobMatch(const char pattern[], const char name[], PetscBool *match)
 {
@@ -69,6 +94,7 @@ PetscErrorCode BoltOptionsCheckUnused(MPI_Comm comm, BoltOptionsStage stage)
     if (stage != BOLT_OPTIONS_FINAL) PetscCall(BoltGlobMatchAny(boltLateOptions, names[i], &late));
     if (stage == BOLT_OPTIONS_BEFORE_SETUP) PetscCall(BoltGlobMatchAny(boltSetUpOptions, names[i], &setUp));
     if (exit || late || setUp) continue;
+    PetscCall(BoltOptionCheckRetired(comm, names[i]));
     if (nbad < 8) {
       PetscCall(PetscStrlcat(msg, nbad ? ", -" : "-", sizeof(msg)));
       PetscCall(PetscStrlcat(msg, names[i], sizeof(msg)));

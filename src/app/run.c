@@ -16,7 +16,6 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   o->fomUpdateRank = -1;
   o->fom          = PETSC_FALSE;
   o->rom          = PETSC_FALSE;
-  o->romCheckS0   = PETSC_FALSE;
   o->exportDir[0] = '\0';
   o->verifyField  = 0;
   o->modalContact = BOLT_MODAL_TIED;
@@ -30,7 +29,6 @@ PetscErrorCode BoltRunOptionsSetFromOptions(MPI_Comm comm, BoltRunOptions *o)
   PetscCall(PetscOptionsInt("-fom_update_rank", "Transient FOM: largest rank of a low-rank update of its factorisation before a state change is factorised afresh (-1: from its flops; 0: always)", NULL, o->fomUpdateRank, &o->fomUpdateRank, NULL));
   PetscCall(PetscOptionsBool("-rom", "Run the reduced-order model: offline reduction (or a matching -rom_file), static preload, Newmark transient", NULL, o->rom, &o->rom, NULL));
   PetscCall(PetscOptionsString("-export_matrices", "Folder for K_tied.petsc and M.petsc (with -rom also rom_K_tied.petsc, rom_M.petsc), PETSc binary; read by python/compare_eigen.py", NULL, o->exportDir, o->exportDir, sizeof(o->exportDir), NULL));
-  PetscCall(PetscOptionsBool("-rom_check_s0", "Check the ROM against the FOM at s = s0 with every contact point active (exact for an order-1 ROM without interface reduction)", NULL, o->romCheckS0, &o->romCheckS0, NULL));
   PetscCall(PetscOptionsInt("-modal_nev", "Number of eigenfrequencies (0: none), of the joint in the state -modal_contact", NULL, o->nev, &o->nev, NULL));
   {
     const char *states[] = {"tied", "preload"};
@@ -281,7 +279,7 @@ PetscErrorCode BoltRunROM(BoltRun *r)
   PetscCall(BoltPreloadStateDestroy(&r->fomPreload));
   PetscCall(BoltROMOperatorCreate(r->rom, &r->romOp));
   if (!r->opt.writeOutput && !BoltLoadSetBoltCount(r->loads)) PetscCall(BoltROMReleaseBasis(r->rom)); /* kept only for the output's V q (and the bolts' stud tensions) */
-  if (r->opt.romCheckS0) PetscCall(BoltROMCheckAtS0(r->rom, r->romOp, r->asmb, r->contact, r->loads, &s->romCheckError));
+  if (BoltROMVerifies(r->rom)) PetscCall(BoltROMCheckAtS0(r->rom, r->romOp, r->asmb, r->contact, r->loads, &s->romCheckError));
   if (r->opt.exportDir[0]) PetscCall(BoltExportReduced(r->opt.exportDir, r->rom, r->romOp));
   PetscCall(BoltRunNewmarkCreate(r, r->romOp, &r->romNm));
   PetscCall(BoltROMSetPreloadState(r->rom, r->romNm, BoltLoadSetPreloadForce(r->loads)));

@@ -230,7 +230,7 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltOperatorCreate(rom->comm, "ROM", rom->contact, &op));
   /* n^2 values: a factorisation adds K_cr to a kept copy of the structural sum */
   PetscCall(BoltOperatorSetSolver(op, "rom_", MATSOLVERPETSC, (rom->nCCM + rom->nJIM) ? PETSC_FALSE : PETSC_TRUE, PETSC_TRUE));
-  PetscCall(BoltContactStateSetAugment(BoltOperatorState(op), rom->augment)); /* -rom_contact_augment */
+  PetscCall(BoltContactStateSetAugment(BoltOperatorState(op), rom->augment)); /* augmented without interface reduction (rom_settings.c) */
   PetscCall(BoltOperatorSetSystem(op, rom->Mr, NULL, rom->Kr, rom->loadr, rom->preloadr));
   PetscCall(BoltOperatorSetDamping(op, rom->Cr, rom->rayleigh[0], rom->rayleigh[1]));
   { /* the basis is modal (reduction.c): the integrator's products are pointwise */

@@ -20,7 +20,7 @@ static PetscBool ROMWholeGapsNearClosing(BoltROM *rom)
    round-off; friction's decisions read the slip too, so there the whole gap. With augmentation
    (the multipliers take the trial traction): u_c and the set's interpolation, as the full
    model. everywhere: every row, held points' too, and every open point's whole gap
-   (-rom_gaps_everywhere, and the check). */
+   (-rom_verify, and the check). */
 static PetscErrorCode ROMGaps(BoltOperator *op, Vec q, PetscBool everywhere, PetscReal gap[])
 {
   BoltROM           *rom = (BoltROM *)BoltOperatorContext(op);
@@ -134,7 +134,7 @@ static PetscErrorCode ROMOpenTractionTerms(BoltROM *rom, BoltContactState *s)
   PetscFunctionReturn(0);
 }
 
-/* The dual loop's gaps (ROMGaps): those its decisions read, or all with -rom_gaps_everywhere. */
+/* The dual loop's gaps (ROMGaps): those its decisions read, or all with -rom_verify. */
 PetscErrorCode ROMContactGaps(BoltOperator *op, Vec q, PetscReal gap[])
 {
   BoltROM *rom = (BoltROM *)BoltOperatorContext(op);
@@ -191,7 +191,7 @@ PetscErrorCode ROMOpenTraction(BoltOperator *op, PetscReal tn[])
 
 /* Whether the proof of ROMSetKept applies: penalty law without friction, flat surfaces (one
    normal row per node pair), nodal quadrature (a point reads its own row); not with
-   -rom_gaps_everywhere, whose runs test every point at every solve (the same bits). */
+   -rom_verify, whose runs test every point at every solve (the same decisions). */
 PetscBool ROMSetKeptApplies(BoltROM *rom, BoltContactState *s)
 {
   return (PetscBool)(!rom->gapsEverywhere && !rom->wholeRows && !rom->pairGaps && BoltContactSetQuadrature(rom->contact) == BOLT_QUADRATURE_NODAL && ROMOpenTractionAffine(rom, s));

@@ -16,20 +16,19 @@
    opening shapes, or snapshot modes of the FOM's run, it can open the pairs the load opens, and
    keeps the strict band (docs/decisions.md).
    Which applies is known once the basis is. */
-static PetscReal ROMDefaultBand(BoltReductionOptions *o, BoltContactSet *contact, BoltROM *rom)
+static PetscReal ROMDefaultBand(BoltContactSet *contact, BoltROM *rom)
 {
-  if (o->bandScale > 0) return o->bandScale;
   return BoltContactSetIsComplementarity(contact) && !rom->augment && rom->nOpeningPairs == 0 && rom->nSnapshotModes == 0 ? 2e5 : 1.0;
 }
 
-/* Whether the points outside the opening shapes keep their preloaded state online: yes, unless
-   told, but not under friction. There a pair the static solves leave sticking may still slip in
+/* Whether the points outside the opening shapes keep their preloaded state online: yes, but not
+   under friction. There a pair the static solves leave sticking may still slip in
    the dynamic response, and the basis gives it some room to (level 0.5, 20 kN and a 300 N step,
    mu 0.1: held, e_L2 1.2e-3 and 5.2 % less dissipation than the FOM; free, 1.6e-4 and 0.7 %; the
    same on two other scenes either way). */
-static PetscBool ROMDefaultHold(BoltReductionOptions *o, BoltContactSet *contact)
+static PetscBool ROMDefaultHold(BoltContactSet *contact)
 {
-  return o->holdUnmarkedSet ? o->holdUnmarked : (PetscBool)!BoltContactSetHasFriction(contact);
+  return (PetscBool)!BoltContactSetHasFriction(contact);
 }
 
 /* The reduction's part of the fingerprint: the static shapes and modes in the basis, each
@@ -72,19 +71,18 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
      close every active gap are not unique (their signs, which decide the active set, are
      arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps
      the reduced contact problem well posed, so it is the default there. */
-  rom->augment = o->augmentSet ? o->augment : (PetscBool)(BoltContactSetAugmented(contact) && o->nCCM + o->nJIM == 0);
+  rom->augment = (PetscBool)(BoltContactSetAugmented(contact) && o->nCCM + o->nJIM == 0);
   PetscCheck(o->krylov, o->comm, PETSC_ERR_ARG_WRONGSTATE, "BoltROMBuild needs the Krylov options: configure the reduction with BoltReductionSetFromOptions");
   kry = o->krylov;
   if (o->trained) o->nCCM = o->nJIM = 0; /* -rom_train reduces no interface: its node pairs are inputs as they are */
   PetscCall(BoltROMFingerprintScene(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, &rom->fingerprint));
   /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
   rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0);
-  PetscCheck(!(o->preloadStateSet && o->preloadState) || rom->preloadState, o->comm, PETSC_ERR_USER_INPUT, "-rom_preload_state needs a ROM with the penalty law (interface reduction, -rom_contact_augment false) and a nonzero bolt preload");
   /* Against a FOM that closes its gaps the increments want a near-hard penalty: 1e5 E/m (500 x
      the paper's), where the penalty law alone matches the augmented FOM. Without the closed-contact
-     Krylov shapes so stiff a penalty locks the reduced interface, and 4e3 E/m (20 x the paper's)
-     does best (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
-  rom->penaltyScale = o->penaltyScale > 0 ? o->penaltyScale : (rom->preloadState && BoltContactSetAugmented(contact) ? (o->nClosed > 0 ? 1e5 : 4e3) / BoltContactSetPenaltyFactor(contact) : 1.0);
+     Krylov shapes (always there now) so stiff a penalty locked the reduced interface
+     (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
+  rom->penaltyScale = rom->preloadState && BoltContactSetAugmented(contact) ? 1e5 / BoltContactSetPenaltyFactor(contact) : 1.0;
   if (o->trained) PetscCall(ROMTrainedSettings(rom, loads));
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
   staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0));
@@ -95,13 +93,13 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   /* ... and none by default with snapshot modes, which carry the openings and slips the FOM made */
   /* (a ROM trained on static solves looks for its changing pairs at this scale, and takes no shapes) */
   if (o->trained) rom->openingScale = staticShapes && o->trainStatic ? o->openingScale : 0;
-  else rom->openingScale = staticShapes ? (o->openingScaleSet ? o->openingScale : (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0)) : 0;
+  else rom->openingScale = staticShapes ? (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0) : 0;
   rom->nOpenKrylov  = rom->openingScale > 0 && !o->trained ? o->nOpenKrylov : 0;
   rom->slipScale    = rom->openingScale > 0 && BoltContactSetHasFriction(contact) ? o->slipScale : 0;
   rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) && !o->trained ? o->coneShapes : 0;
   rom->coneTraction = o->coneTraction;
   rom->coneModes    = rom->coneShapes > 0 ? o->coneModes : 0;
-  staticPenaltyScale = o->staticPenaltyScale > 0 ? o->staticPenaltyScale : PetscMax(1.0, 2e6 / BoltContactSetPenaltyFactor(contact)); /* 2e6 E/m */
+  staticPenaltyScale = PetscMax(1.0, 2e6 / BoltContactSetPenaltyFactor(contact)); /* 2e6 E/m */
   PetscCall(ROMFingerprintShapes(o, rom, staticShapes, staticPenaltyScale));
   rom->staticShapes       = staticShapes;
   rom->staticPenaltyScale = staticPenaltyScale;
@@ -208,9 +206,9 @@ PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact)
   BoltReductionOptions *o = &rom->opt;
 
   PetscFunctionBeginUser;
-  rom->bandScale      = ROMDefaultBand(o, contact, rom);
+  rom->bandScale      = ROMDefaultBand(contact, rom);
   rom->updateRank     = o->updateRank;
-  rom->holdUnmarked   = ROMDefaultHold(o, contact);
+  rom->holdUnmarked   = ROMDefaultHold(contact);
   rom->gapsEverywhere = o->gapsEverywhere;
   rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (BoltContactSetIsComplementarity(contact) && !rom->augment ? (3 * rom->n) / 5 : 0);
   PetscFunctionReturn(0);

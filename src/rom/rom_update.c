@@ -12,8 +12,9 @@
    has differed from it (its pool), so a change of the set costs the solves of the slots new to
    the pool and the factorisation of I + S G, of size 3k for k differing slots (with nodal points
    the smaller symmetric system of src/sys/capacitance.c). Where every reference differs by more
-   than -rom_update_rank columns (or its pool is full, or I + S G is singular), the current state
-   is factorised and becomes a reference, replacing the one unused longest. The joint opens and
+   columns than the largest update (3/5 of the dimension; 0 with -rom_verify), or its pool is
+   full, or I + S G is singular, the current state is factorised and becomes a reference,
+   replacing the one unused longest. The joint opens and
    closes through the same states period after period, so a few references carry a whole run.
 
    Every rank holds the references and the correction, built from the slots' records gathered

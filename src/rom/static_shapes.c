@@ -241,7 +241,7 @@ static PetscErrorCode ROMConePairs(BoltContactSet *c, BoltROM *rom, PetscInt *nC
   PetscCall(MPIU_Allreduce(&ncone, &nconeGlobal, 1, MPIU_INT, MPI_SUM, rom->comm));
   PetscCall(BoltNodePairsDirected(c, cone, 2, dir, nConePairs, conePairs, coneDirs));
   PetscCall(PetscFree(dir));
-  /* marked too: these points are free online whatever -rom_hold_unmarked says */
+  /* marked too: these points are free online whether or not unmarked points are held */
   if (!rom->marked) {
     rom->marked = cone;
     cone        = NULL;
