@@ -32,7 +32,7 @@ PetscErrorCode BoltNodePairsCombination(PetscInt npair, const PetscInt pairs[], 
 PetscErrorCode BoltNodePairVectorAlong(PetscInt a, PetscInt b, const PetscReal dir[3], Vec v);
 PetscErrorCode BoltNodePairVector(PetscInt a, PetscInt b, PetscInt d, Vec v);
 PetscErrorCode BoltNodePairPatterns(MPI_Comm comm, PetscInt npair, const PetscInt pairs[], const PetscReal dirs[], PetscInt stride, PetscInt nsnap, Vec snap[], PetscInt kmax, PetscInt *kout, PetscReal **patterns);
-PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscBool keepActive, PetscReal openingScale, PetscInt nOpenKrylov, const BoltPreloadState *shared, PetscInt nsnap, Vec snap[], PetscInt *nextra, Vec **extrap, Vec *preload);
+PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscReal openingScale, PetscInt nOpenKrylov, const BoltPreloadState *shared, PetscInt nsnap, Vec snap[], PetscInt *nextra, Vec **extrap, Vec *preload);
 PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *contact, BoltLoadSet *loads);
 PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact);
 PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *loads, PetscLogDouble t0, PetscBool *reused);
@@ -83,10 +83,7 @@ struct _n_BoltReductionOptions {
   PetscBool  verify;        /* -rom_verify: the checks below, and the online shortcuts replaced by the plain way */
   PetscBool  checkOrthogonality;
   /* the construction's fixed settings (rom_object.c), resolved by SetUp */
-  PetscBool  preloadState;       /* penalty-law ROM: start from the FOM's preloaded state */
   PetscInt   nClosed;            /* closed-contact Krylov vectors */
-  PetscBool  closedKeepActive;   /* the closed-contact Krylov vectors keep the preloaded active set */
-  PetscBool  staticShapes;       /* the augmented ROM gets the static shapes too */
   PetscReal  openingScale;       /* the load's scale whose changed pairs get opening shapes */
   PetscReal  slipScale;          /* friction: the load's scale whose pairs beyond the cone get shapes */
   PetscReal  coneShapes;         /* -rom_cone_shapes: friction, the pairs at this fraction of the cone in the preloaded state get shapes, 0 none */

@@ -334,7 +334,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
     Vec     *extra;
     PetscInt added, nextra;
     PetscCall(PetscLogEventBegin(BOLT_EVENT_BASIS, 0, 0, 0, 0));
-    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->closedKeepActive, o->trained ? 0 : rom->openingScale, rom->nOpenKrylov, o->fomPreload, o->nFomSnapshots, o->fomSnapshots, &nextra, &extra, &preloadCalibrated));
+    PetscCall(BoltROMPreloadSolve(asmb, contact, loads, rom, o->nClosed, staticPenaltyScale, o->trained ? 0 : rom->openingScale, rom->nOpenKrylov, o->fomPreload, o->nFomSnapshots, o->fomSnapshots, &nextra, &extra, &preloadCalibrated));
     PetscCall(BoltMemoryPrint(o->comm, "the preloaded state's static solves"));
     PetscCall(BoltAssemblerDamping(asmb, &C));
     if (o->trained) { PetscCall(VecDuplicate(extra[0], &q0keep)); PetscCall(VecCopy(extra[0], q0keep)); }

@@ -66,10 +66,7 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
   /* Fixed settings of the construction (docs/decisions.md gives each one's measurement): they
      were options once, each added to fix a scene; none is a knob a user should turn. */
-  o->preloadState       = PETSC_TRUE;
   o->nClosed            = 3;
-  o->closedKeepActive   = PETSC_TRUE;
-  o->staticShapes       = PETSC_TRUE;
   o->openingScale       = 2;    /* the strict law's; resolved by the law when the ROM is built */
   o->slipScale          = 4;
   o->nOpenKrylov        = 3;
@@ -185,7 +182,7 @@ PetscErrorCode BoltROMView(BoltROM *rom, PetscViewer viewer)
   if (!rom->contact) PetscFunctionReturn(0); /* not set up: only the options as given */
   PetscCall(PetscViewerASCIIPrintf(viewer, "  dimension %" PetscInt_FMT " (%s%s), contact %s, preload state %s, static shapes %s\n", rom->n, rom->fromFile ? "from the file" : "built", o->trained ? ", trained: held pairs tied" : "", rom->augment ? "augmented" : "penalty", PetscBools[rom->preloadState], PetscBools[rom->staticShapes]));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  penalty scale %g, band scale %g, static penalty scale %g\n", (double)rom->penaltyScale, (double)rom->bandScale, (double)rom->staticPenaltyScale));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  closed-contact Krylov %" PetscInt_FMT " (%s), opening shapes at %g x the load, %" PetscInt_FMT " opened-joint Krylov, slip shapes at %g x\n", rom->nClosed, o->closedKeepActive ? "preloaded set kept" : "set free", (double)rom->openingScale, rom->nOpenKrylov, (double)rom->slipScale));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  closed-contact Krylov %" PetscInt_FMT " (preloaded set kept), opening shapes at %g x the load, %" PetscInt_FMT " opened-joint Krylov, slip shapes at %g x\n", rom->nClosed, (double)rom->openingScale, rom->nOpenKrylov, (double)rom->slipScale));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  cone shapes at %g (%s), %" PetscInt_FMT " cone modes; snapshot modes %" PetscInt_FMT "\n", (double)rom->coneShapes, rom->coneTraction ? "normal and traction" : "normal", rom->coneModes, o->nSnapshotModes));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  online: largest low-rank update %" PetscInt_FMT " (0: refactorise), unmarked points %s, gaps everywhere %s\n", rom->updateRankUsed, rom->holdUnmarked ? "held" : "free", PetscBools[rom->gapsEverywhere]));
   PetscFunctionReturn(0);

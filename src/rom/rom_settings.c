@@ -42,7 +42,7 @@ static PetscErrorCode ROMFingerprintShapes(BoltReductionOptions *o, BoltROM *rom
   PetscCall(BoltROMFingerprintInt(fp, "trained", o->trainAuto ? 3 : o->trained ? (o->trainStatic ? 2 : 1) : 0)); /* 2: from static solves; 3: auto */
   PetscCall(BoltROMFingerprintString(fp, "static_shapes", !staticShapes ? "none" : rom->preloadState ? "preload state" : "static shapes"));
   PetscCall(BoltROMFingerprintInt(fp, "closed_krylov", staticShapes ? o->nClosed : 0));
-  PetscCall(BoltROMFingerprintInt(fp, "closed_krylov_keep_active", staticShapes && o->nClosed > 0 ? o->closedKeepActive : 0));
+  PetscCall(BoltROMFingerprintInt(fp, "closed_krylov_keep_active", staticShapes && o->nClosed > 0)); /* always kept */
   PetscCall(BoltROMFingerprintReal(fp, "static_penalty_scale", staticShapes ? staticPenaltyScale : 0));
   PetscCall(BoltROMFingerprintReal(fp, "opening_scale", rom->openingScale));
   PetscCall(BoltROMFingerprintInt(fp, "opened_joint_krylov", rom->openingScale > 0 ? rom->nOpenKrylov : 0));
@@ -77,7 +77,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   if (o->trained) o->nCCM = o->nJIM = 0; /* -rom_train reduces no interface: its node pairs are inputs as they are */
   PetscCall(BoltROMFingerprintScene(asmb, contact, loads, kry->order, kry->s0, kry->deflationTol, o->nCCM, o->nJIM, &rom->fingerprint));
   /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
-  rom->preloadState = (PetscBool)(o->preloadState && !rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0);
+  rom->preloadState = (PetscBool)(!rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0);
   /* Against a FOM that closes its gaps the increments want a near-hard penalty: 1e5 E/m (500 x
      the paper's), where the penalty law alone matches the augmented FOM. Without the closed-contact
      Krylov shapes (always there now) so stiff a penalty locked the reduced interface
@@ -85,7 +85,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   rom->penaltyScale = rom->preloadState && BoltContactSetAugmented(contact) ? 1e5 / BoltContactSetPenaltyFactor(contact) : 1.0;
   if (o->trained) PetscCall(ROMTrainedSettings(rom, loads));
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
-  staticShapes = (PetscBool)(rom->preloadState || (o->staticShapes && rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0));
+  staticShapes = (PetscBool)(BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0);
   rom->nClosed = staticShapes ? o->nClosed : 0;
   /* Opening shapes by default for the interface-reduced ROM under the strict law (the ROM without
      interface reduction has every node pair's force among its inputs; the stick law's scenes are

@@ -256,7 +256,7 @@ static PetscErrorCode ROMConePairs(BoltContactSet *c, BoltROM *rom, PetscInt *nC
 /* The preloaded joint's static responses to unit force pairs: three per opening node pair, and
    at the cone pairs one per direction (or, compressed, one per training pattern), appended to
    the static shapes with the opened-joint shapes after them. */
-static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOperator *op, BoltDual *dual, PetscBool keepActive, PetscInt nClosed, PetscInt npairs, const PetscInt pairs[], PetscInt nConePairs, const PetscInt conePairs[], const PetscReal coneDirs[], PetscInt nOpenKrylov, Vec openK[], PetscInt nsnap, Vec snap[], Vec q, Vec rhs, PetscInt *nextra, Vec **extrap)
+static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOperator *op, BoltDual *dual, PetscInt nClosed, PetscInt npairs, const PetscInt pairs[], PetscInt nConePairs, const PetscInt conePairs[], const PetscReal coneDirs[], PetscInt nOpenKrylov, Vec openK[], PetscInt nsnap, Vec snap[], Vec q, Vec rhs, PetscInt *nextra, Vec **extrap)
 {
   BoltContactState *s     = BoltOperatorState(op);
   Vec              *extra = *extrap, *all;
@@ -268,7 +268,7 @@ static PetscErrorCode ROMNodePairShapes(BoltContactSet *c, BoltROM *rom, BoltOpe
   PetscCall(PetscArraycpy(all, extra, *nextra));
   PetscCall(PetscFree(extra));
   extra = all;
-  if (!(keepActive && nClosed > 0)) { /* else the closed-contact vectors' last solve factored K + K_c of the preloaded set */
+  if (nClosed == 0) { /* else the closed-contact vectors' last solve factored K + K_c of the preloaded set */
     PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
     PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     PetscCall(ROMStaticSolve(rom->rigid, dual, NULL, BoltOperatorPreloadVec(op), q, 0, &nout, &nin));
@@ -347,7 +347,7 @@ static PetscErrorCode ROMRaiseLoad(BoltOperator *op, PetscReal *nload, PetscReal
    under the clamp and starts from a tilted state; with q0 in its basis and the FOM's multipliers
    frozen it starts exactly where the FOM does, and the load response gives it one gap-free
    shape, which lets a stiffer penalty carry the increments without locking. */
-PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscBool keepActive, PetscReal openingScale, PetscInt nOpenKrylov, const BoltPreloadState *shared, PetscInt nsnap, Vec snap[], PetscInt *nextra, Vec **extrap, Vec *preload)
+PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltLoadSet *loads, BoltROM *rom, PetscInt nClosed, PetscReal staticPenaltyScale, PetscReal openingScale, PetscInt nOpenKrylov, const BoltPreloadState *shared, PetscInt nsnap, Vec snap[], PetscInt *nextra, Vec **extrap, Vec *preload)
 {
   BoltOperator     *op;
   BoltContactState *s;
@@ -394,16 +394,14 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
      so the basis holds the closed joint's low-frequency shapes too. Forced at 1e-3 of the
      preload's norm: small enough that the joint stays closed, large enough to rise above the
      contact loop's residual (the shapes are those of the closed joint; their scale is lost in
-     the orthonormalisation). By default they keep the preloaded active set: the forcing, spread
-     over the whole volume, opens points at the rim on fine meshes, and the basis of that opened
-     joint is less accurate than the one with the set kept (docs/reduction.md) */
+     the orthonormalisation). They keep the preloaded active set: the forcing, spread over the
+     whole volume, opened points at the rim on fine meshes, and the basis of that opened joint
+     was less accurate than the one with the set kept (docs/decisions.md) */
   if (nClosed > 0) {
     PetscReal nforce = 1e-3 * npre;
     PetscCall(PetscPrintf(rom->comm, "ROM: closed-contact Krylov forcing of norm %g (load %g, preload %g)\n", (double)nforce, (double)nload, (double)npre));
-    if (keepActive) {
-      PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
-      PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
-    }
+    PetscCall(BoltContactStateSetActive(s, rom->active0, rom->released0));
+    PetscCall(BoltDualSetKeepActiveSet(dual, PETSC_TRUE));
     /* BoltOperatorLoadVec(op), this solve's own copy, is the forcing of each vector in turn */
     PetscCall(BoltStaticKrylov(rom->rigid, dual, BoltOperatorMass(op), BoltOperatorPreloadVec(op), extra[0], extra[1], nforce, nClosed, "closed-contact", BoltOperatorLoadVec(op), rhs, q, &extra[2]));
   }
@@ -413,7 +411,7 @@ PetscErrorCode BoltROMPreloadSolve(BoltAssembler *asmb, BoltContactSet *c, BoltL
      displacement, so by Sherman-Morrison the joint's response with that pair open, to any forces
      on it, lies in the span of its three shapes, and together they span the response of the
      joint with any subset of those pairs open (Woodbury); the interface modes do not. */
-  if (npairs + nConePairs > 0) PetscCall(ROMNodePairShapes(c, rom, op, dual, keepActive, nClosed, npairs, pairs, nConePairs, conePairs, coneDirs, nOpenKrylov, openK, nsnap, snap, q, rhs, nextra, &extra));
+  if (npairs + nConePairs > 0) PetscCall(ROMNodePairShapes(c, rom, op, dual, nClosed, npairs, pairs, nConePairs, conePairs, coneDirs, nOpenKrylov, openK, nsnap, snap, q, rhs, nextra, &extra));
   PetscCall(PetscFree(openK));
   PetscCall(PetscFree(pairs));
   PetscCall(PetscFree(conePairs));
