@@ -111,6 +111,20 @@ def test_help_lists_the_rom_options_and_no_other():
     assert names == ROM_OPTIONS, sorted(names ^ ROM_OPTIONS)
 
 
+def test_every_retired_rom_option_is_named_in_its_refusal(joint_small, tmp_path):
+    """Each former -rom_* option that src/app/preflight.c lists as retired stops a run before any
+    computation with one line naming it (and what replaces it, where something does), and none of
+    them is still among the options."""
+    mesh, _ = joint_small
+    text = (ROOT / "src" / "app" / "preflight.c").read_text()
+    table = text[text.index("boltRetiredOptions[][2]"):text.index("{NULL, NULL}")]
+    retired = re.findall(r'\{"(rom_[a-z0-9_]+)"', table)
+    assert len(retired) == 17 and not {"-" + r for r in retired} & ROM_OPTIONS, retired
+    for i, name in enumerate(retired):
+        expect_error(["-mesh", mesh, "-static", "false", "-modal_nev", "0", "-rom", "-ts_end", "5e-4", "-" + name, "1"],
+                     tmp_path / str(i), "-" + name, "no longer an option", "remove it from the scene")
+
+
 def test_truncated_mesh_file(beam, tmp_path):
     cut = tmp_path / "cut.msh"
     data = open(beam, "rb").read()
