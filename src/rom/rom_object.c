@@ -64,8 +64,8 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
     }
   }
   PetscCall(PetscOptionsBool("-rom_allow_foreign_load", "Run a load that is not an input of the ROM (the paper's reuse experiment)", NULL, o->extraInputs, &o->extraInputs, NULL));
-  /* Fixed settings of the construction (docs/decisions.md gives each one's measurement): they
-     were options once, each added to fix a scene; none is a knob a user should turn. */
+  /* Fixed settings of the construction, not options: docs/decisions.md gives the measurement
+     behind each ("The construction's fixed settings"). */
   o->nClosed            = 3;
   o->openingScale       = 2;    /* the strict law's; resolved by the law when the ROM is built */
   o->slipScale          = 4;

@@ -70,7 +70,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   /* With interface reduction the ROM has fewer DOFs than contact constraints: multipliers that
      close every active gap are not unique (their signs, which decide the active set, are
      arbitrary) and closing the gaps exactly locks the reduced interface. The penalty law keeps
-     the reduced contact problem well posed, so it is the default there. */
+     the reduced contact problem well posed, so it is the law there. */
   rom->augment = (PetscBool)(BoltContactSetAugmented(contact) && o->nCCM + o->nJIM == 0);
   PetscCheck(o->krylov, o->comm, PETSC_ERR_ARG_WRONGSTATE, "BoltROMBuild needs the Krylov options: configure the reduction with BoltReductionSetFromOptions");
   kry = o->krylov;
@@ -79,9 +79,9 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   /* the preloaded state needs the penalty law (the augmented ROM closes its own gaps) and a preload */
   rom->preloadState = (PetscBool)(!rom->augment && BoltLoadSetHasPreload(loads) && BoltLoadSetPreloadForce(loads) != 0);
   /* Against a FOM that closes its gaps the increments want a near-hard penalty: 1e5 E/m (500 x
-     the paper's), where the penalty law alone matches the augmented FOM. Without the closed-contact
-     Krylov shapes (always there now) so stiff a penalty locked the reduced interface
-     (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
+     the paper's), where the penalty law alone matches the augmented FOM. It needs the
+     closed-contact Krylov shapes, which the basis always has: without them so stiff a penalty
+     locked the reduced interface (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
   rom->penaltyScale = rom->preloadState && BoltContactSetAugmented(contact) ? 1e5 / BoltContactSetPenaltyFactor(contact) : 1.0;
   if (o->trained) PetscCall(ROMTrainedSettings(rom, loads));
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
