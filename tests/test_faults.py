@@ -253,3 +253,25 @@ def test_unwritable_output_dir_stops_before_any_computation(joint_small, tmp_pat
     assert f"Cannot create or write the directory {out}" in line and "-output_dir" in line
     assert p.stdout == ""
     assert [q.name for q in tmp_path.iterdir()] == ["afile"] and afile.read_text() == "a file, not a folder\n"
+
+
+def test_mumps_short_of_workspace_is_factorised_again(joint_small, tmp_path):
+    """MUMPS sizes its workspace from its analysis's estimate plus ICNTL(14) percent; on several
+    ranks the estimate now and then falls short (INFOG(1) = -9), which PETSc records without
+    raising, and every solve then returned Inf. A negative margin forces the same error on one
+    rank: the interface reduction's factorisation is made again with a margin of 20 % (one line
+    says so), and the ROM's history has the same bits as a run that never ran short."""
+    mesh, _ = joint_small
+    common = ["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-fom", "false", "-rom", "true",
+              "-rom_file", "", "-rom_train", "none", "-ts_end", "0.002"]
+    probe = {}
+    for name, extra in (("plain", []), ("short", ["-ir_mat_mumps_icntl_14", "-50"])):
+        d = tmp_path / name
+        proc = run_boltrom(common + ["-output_dir", d] + extra)
+        retries = [l for l in proc.stdout.splitlines() if l.startswith("MUMPS: the factorisation needed more workspace")]
+        assert len(retries) == (1 if extra else 0), proc.stdout
+        if extra:
+            assert "INFOG(1) = -9" in retries[0] and "-ir_mat_mumps_icntl_14 20" in retries[0]
+        with h5py.File(d / "paper-step.h5") as f:
+            probe[name] = f["/rom/probe"][...]
+    assert np.all(np.isfinite(probe["short"])) and np.array_equal(probe["plain"], probe["short"])

@@ -48,7 +48,14 @@ static PetscErrorCode IRFactor(BoltInterface *ir, Mat A, const char prefix[], KS
      factor of LU, which is what lets the interface reduction run on meshes of 500k DOFs */
   PetscCall(MatSetOption(A, MAT_SPD, PETSC_TRUE));
   PetscCall(BoltDirectSolverCreate(ir->comm, prefix, A, PETSC_TRUE, MATSOLVERMUMPS, ksp));
-  PetscCall(KSPSetUp(*ksp));
+  PetscCall(BoltDirectSolverFactor(*ksp));
+  {
+    PC             pc;
+    PCFailedReason reason;
+    PetscCall(KSPGetPC(*ksp, &pc));
+    PetscCall(PCGetFailedReason(pc, &reason));
+    PetscCheck(reason == PC_NOERROR, ir->comm, PETSC_ERR_NOT_CONVERGED, "Interface reduction: factorisation of %s failed (%s): check that the model is held, or raise -%smat_mumps_icntl_14 if MUMPS ran short of workspace", prefix && !strcmp(prefix, "ir_") ? "Kt = K + s0 C + s0^2 M" : "its interior block", PCFailedReasons[reason], prefix ? prefix : "");
+  }
   PetscFunctionReturn(0);
 }
 

@@ -109,7 +109,7 @@ PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt, KSP *k
   PetscCall(KSPGetPC(*ksp, &pc));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &isfactor, PCLU, PCCHOLESKY, ""));
   PetscCheck(isfactor, comm, PETSC_ERR_USER_INPUT, "-krylov_pc_type must be lu or cholesky: the Krylov blocks are solved with MatMatSolve on a direct factorization");
-  PetscCall(KSPSetUp(*ksp));
+  PetscCall(BoltDirectSolverFactor(*ksp));
   PetscCall(PCFactorGetMatrix(pc, F));
   PetscCall(MatFactorGetError(*F, &ferr));
   failed = (PetscMPIInt)(ferr != MAT_FACTOR_NOERROR);

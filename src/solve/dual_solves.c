@@ -58,7 +58,7 @@ PetscErrorCode BoltDualFactorInto(BoltDual *d, Mat A, KSP ksp)
   d->tContactStiffness += t1 - t0;
   PetscCall(PetscLogEventBegin(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   PetscCall(KSPSetOperators(ksp, A, A));
-  PetscCall(KSPSetUp(ksp));
+  PetscCall(BoltDirectSolverFactor(ksp));
   PetscCall(PetscLogEventEnd(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   {
     PC             pc;
