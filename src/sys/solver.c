@@ -68,8 +68,8 @@ static PetscBool BoltMumpsShortOfSpace(PetscInt infog1)
    which the PC records but does not raise, and every solve then returned Inf. MUMPS factorises
    only after a fresh analysis once a factorisation failed, so the PC is reset and set up again,
    with the margin doubled plus 20 (at least MUMPS's default, 20) for this solver's prefix, up to
-   four times; the later factorisations of that prefix keep the margin. Returns with the factorisation's error as the
-   PC records it, for the caller to report in its own terms. */
+   four times; the later factorisations of that prefix keep the margin. Returns with the
+   factorisation's error as the PC records it, for the caller to report in its own terms. */
 PetscErrorCode BoltDirectSolverFactor(KSP ksp)
 {
   PC            pc;
