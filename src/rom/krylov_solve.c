@@ -114,6 +114,7 @@ PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt, KSP *k
   PetscCall(MatFactorGetError(*F, &ferr));
   failed = (PetscMPIInt)(ferr != MAT_FACTOR_NOERROR);
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_LOR, comm));
+  PetscCheck(!failed || ferr != MAT_FACTOR_OUTMEMORY, comm, PETSC_ERR_MEM, "Factorization of Kt = K + s0 C + s0^2 M ran out of workspace even after four larger tries: raise -krylov_mat_mumps_icntl_14 or run on more memory");
   PetscCheck(!failed, comm, PETSC_ERR_USER_INPUT, "Factorization of Kt = K + s0 C + s0^2 M failed (s0 = %g rad/s): Kt is singular, i.e. s0 = 0 on an unheld model; change -krylov_s0 or check the clamp", (double)s0);
   PetscCall(PetscTime(&t1));
   kr->tFactor = t1 - t0;
