@@ -189,8 +189,9 @@ def test_rom_slip_shapes_carry_the_dissipation_of_a_sine_along_x(joint_small, tm
     period the interface-reduced ROM dissipates the FOM's energy to 1 % (measured 0.07 %). Its slip
     shapes are those of the pairs beyond the cone, sticking, at -/+ 4 x the load; with those at
     twice the load only the ROM fell 3.8 % short (4.3 % over the whole period): the sticking
-    solve's zone beyond the cone is narrower than the slip zone. The force the plate interface transmits (/rom/pair_force) follows the
-    FOM's to 2 % of its peak along x and 0.5 % of the clamp normally (measured 0.9 % and 0.1 %)."""
+    solve's zone beyond the cone is narrower than the slip zone. The force the plate interface
+    transmits (/rom/pair_force) follows the FOM's to 2 % of its peak along x and 0.5 % of the
+    clamp normally (measured 0.9 % and 0.1 %)."""
     mesh, _ = joint_small
     s = run_summary(["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-ts_end", "0.005",
                      "-preload_force", "5000", "-load_force", "300", "-load_history", "sine", "-load_frequency", "50",
