@@ -87,7 +87,7 @@ PetscErrorCode BoltDirectSolverSetType(KSP, PetscBool, MatSolverType);
 PetscErrorCode BoltDirectSolverCreate(MPI_Comm, const char[], Mat, PetscBool, MatSolverType, KSP *);
 PetscErrorCode BoltBVTolerateCancellation(BV);
 PetscErrorCode BoltDirectSolverSetFromOptions(MPI_Comm, const char[], PetscBool, MatSolverType);
-PetscErrorCode BoltDirectSolverFactor(KSP);
+PetscErrorCode BoltDirectSolverFactor(KSP, PCFailedReason *);
 PetscErrorCode BoltModalSetFromOptions(MPI_Comm, PetscInt, const char[]); /* analysis.c */
 
 #endif

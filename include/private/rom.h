@@ -80,8 +80,7 @@ struct _n_BoltReductionOptions {
   char       file[PETSC_MAX_PATH_LEN];
   char       rebuildFile[PETSC_MAX_PATH_LEN]; /* -rom_rebuild: where a ROM built in place of a -rom_file that does not match (or is damaged) goes; empty: refuse */
   PetscBool  extraInputs;   /* allow a load that is not an input of the ROM */
-  PetscBool  verify;        /* -rom_verify: the checks below, and the online shortcuts replaced by the plain way */
-  PetscBool  checkOrthogonality;
+  PetscBool  verify;        /* -rom_verify: orthogonality and s0 checked, online every gap and a refactorisation at every change */
   /* the construction's fixed settings (rom_object.c), resolved by SetUp */
   PetscInt   nClosed;            /* closed-contact Krylov vectors */
   PetscReal  openingScale;       /* the load's scale whose changed pairs get opening shapes */
@@ -89,8 +88,6 @@ struct _n_BoltReductionOptions {
   PetscReal  coneShapes;         /* -rom_cone_shapes: friction, the pairs at this fraction of the cone in the preloaded state get shapes, 0 none */
   PetscBool  coneTraction;       /* -rom_cone_traction */
   PetscInt   coneModes;          /* -rom_cone_modes: the cone shapes compressed to this many per direction, 0 a shape per pair */
-  PetscInt   updateRank;         /* largest low-rank update of the online factorisation, -1 default, 0 (-rom_verify) refactorise */
-  PetscBool  gapsEverywhere;     /* -rom_verify: every point's gaps at every solve */
   PetscInt   nOpenKrylov;        /* opened-joint Krylov vectors */
   PetscInt   nSnapshotModes;                /* -rom_snapshot_modes: POD modes of the FOM's snapshots of this run, 0 none */
   PetscReal  snapshotTol;                   /* the snapshot modes' smallest singular value, relative */
@@ -201,7 +198,6 @@ struct _n_BoltROM {
   PetscBool       holdUnmarked;  /* online, the other points keep their preloaded state */
   PetscBool       gapsEverywhere; /* -rom_verify: every point's gaps at every solve */
   PetscReal       epsSaved[3 * BOLTROM_MAX_PAIRS]; /* the FOM's penalties (N, T) and bands per pair, while the ROM's are set */
-  PetscInt        updateRank;    /* -1: the default; 0 (-rom_verify): refactorise */
   PetscInt        updateRankUsed; /* as resolved when the operator was made (0: refactorise) */
   struct BoltROMUpdate_s *update; /* low-rank updates of the online factorisation (rom_update.c), or NULL */
   /* F_r = sum_p D_p' F_p over node pairs p (D_p: the pair's three rows of D = V_b - V_a, F_p the

@@ -13,7 +13,7 @@ PetscErrorCode BoltStaticSolve(Mat K, Vec f, Vec u, const char prefix[])
   /* a failed solve does not raise an error (KSP's default): the check below names its cause */
   PetscCall(BoltDirectSolverCreate(PetscObjectComm((PetscObject)K), prefix, K, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
   PetscCall(PetscLogEventBegin(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
-  PetscCall(BoltDirectSolverFactor(ksp));
+  PetscCall(BoltDirectSolverFactor(ksp, NULL));
   PetscCall(PetscLogEventEnd(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   PetscCall(KSPSolve(ksp, f, u));
   PetscCall(KSPGetConvergedReason(ksp, &reason));

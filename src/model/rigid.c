@@ -146,7 +146,7 @@ PetscErrorCode BoltStaticSolveFree(Mat K, Mat M, BV R, Vec f, Vec u, const char 
   PetscCall(MatAXPY(A, sigma, M, SUBSET_NONZERO_PATTERN));
   PetscCall(BoltDirectSolverCreate(comm, prefix, A, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
   PetscCall(PetscLogEventBegin(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
-  PetscCall(BoltDirectSolverFactor(ksp));
+  PetscCall(BoltDirectSolverFactor(ksp, NULL));
   PetscCall(PetscLogEventEnd(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   PetscCall(VecDuplicate(f, &fr));
   PetscCall(VecDuplicate(f, &rhs));

@@ -43,19 +43,15 @@ static PetscErrorCode IRLift(BoltInterface *ir, Vec xI, Vec u)
 
 static PetscErrorCode IRFactor(BoltInterface *ir, Mat A, const char prefix[], KSP *ksp)
 {
+  PCFailedReason reason;
+
   PetscFunctionBeginUser;
   /* Kt = K + s0 C + s0^2 M is symmetric positive definite for s0 > 0: Cholesky keeps half the
      factor of LU, which is what lets the interface reduction run on meshes of 500k DOFs */
   PetscCall(MatSetOption(A, MAT_SPD, PETSC_TRUE));
   PetscCall(BoltDirectSolverCreate(ir->comm, prefix, A, PETSC_TRUE, MATSOLVERMUMPS, ksp));
-  PetscCall(BoltDirectSolverFactor(*ksp));
-  {
-    PC             pc;
-    PCFailedReason reason;
-    PetscCall(KSPGetPC(*ksp, &pc));
-    PetscCall(PCGetFailedReason(pc, &reason));
-    PetscCheck(reason == PC_NOERROR, ir->comm, PETSC_ERR_NOT_CONVERGED, "Interface reduction: factorisation of %s failed (%s): check that the model is held, or raise -%smat_mumps_icntl_14 if MUMPS ran short of workspace", prefix && !strcmp(prefix, "ir_") ? "Kt = K + s0 C + s0^2 M" : "its interior block", PCFailedReasons[reason], prefix ? prefix : "");
-  }
+  PetscCall(BoltDirectSolverFactor(*ksp, &reason));
+  PetscCheck(reason == PC_NOERROR, ir->comm, PETSC_ERR_NOT_CONVERGED, "Interface reduction: factorisation of %s failed (%s): check that the model is held, or raise -%smat_mumps_icntl_14 if MUMPS ran short of workspace", prefix && !strcmp(prefix, "ir_") ? "Kt = K + s0 C + s0^2 M" : "its interior block", PCFailedReasons[reason], prefix ? prefix : "");
   PetscFunctionReturn(0);
 }
 

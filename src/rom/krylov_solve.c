@@ -84,8 +84,7 @@ PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt, KSP *k
   MPI_Comm       comm = PetscObjectComm((PetscObject)K);
   PC             pc;
   MatStructure   strC, strM;
-  MatFactorError ferr;
-  PetscMPIInt    failed;
+  PCFailedReason reason;
   PetscBool      isfactor, set, symK, symC, symM;
   PetscReal      s0 = kr->s0, t0, t1;
 
@@ -109,13 +108,10 @@ PetscErrorCode KrylovFactor(BoltKrylov *kr, Mat M, Mat C, Mat K, Mat *Kt, KSP *k
   PetscCall(KSPGetPC(*ksp, &pc));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &isfactor, PCLU, PCCHOLESKY, ""));
   PetscCheck(isfactor, comm, PETSC_ERR_USER_INPUT, "-krylov_pc_type must be lu or cholesky: the Krylov blocks are solved with MatMatSolve on a direct factorization");
-  PetscCall(BoltDirectSolverFactor(*ksp));
+  PetscCall(BoltDirectSolverFactor(*ksp, &reason));
   PetscCall(PCFactorGetMatrix(pc, F));
-  PetscCall(MatFactorGetError(*F, &ferr));
-  failed = (PetscMPIInt)(ferr != MAT_FACTOR_NOERROR);
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_LOR, comm));
-  PetscCheck(!failed || ferr != MAT_FACTOR_OUTMEMORY, comm, PETSC_ERR_MEM, "Factorization of Kt = K + s0 C + s0^2 M ran out of workspace even after four larger tries: raise -krylov_mat_mumps_icntl_14 or run on more memory");
-  PetscCheck(!failed, comm, PETSC_ERR_USER_INPUT, "Factorization of Kt = K + s0 C + s0^2 M failed (s0 = %g rad/s): Kt is singular, i.e. s0 = 0 on an unheld model; change -krylov_s0 or check the clamp", (double)s0);
+  PetscCheck(reason != PC_FACTOR_OUTMEMORY, comm, PETSC_ERR_MEM, "Factorization of Kt = K + s0 C + s0^2 M ran out of workspace even after four larger tries: raise -krylov_mat_mumps_icntl_14 or run on more memory");
+  PetscCheck(reason == PC_NOERROR, comm, PETSC_ERR_USER_INPUT, "Factorization of Kt = K + s0 C + s0^2 M failed (s0 = %g rad/s): Kt is singular, i.e. s0 = 0 on an unheld model; change -krylov_s0 or check the clamp", (double)s0);
   PetscCall(PetscTime(&t1));
   kr->tFactor = t1 - t0;
   PetscCall(PetscLogEventEnd(BOLT_EVENT_KRYLOV_FACTOR, 0, 0, 0, 0));

@@ -373,7 +373,7 @@ PetscErrorCode ROMBuild(BoltROM *rom, BoltAssembler *asmb, BoltContactSet *conta
   PetscCall(PetscTime(&t2));
   PetscCall(BVGetSizes(V, NULL, NULL, &rom->n));
   rom->orthogonality = -1;
-  if (o->checkOrthogonality) PetscCall(ROMOrthogonality(rom, V)); /* of the orthogonalised basis */
+  if (o->verify) PetscCall(ROMOrthogonality(rom, V)); /* of the orthogonalised basis */
   PetscCall(PetscLogEventBegin(BOLT_EVENT_PROJECTION, 0, 0, 0, 0));
   PetscCall(ROMModalBasis(V, M, K));
   PetscCall(BoltProject(V, M, &rom->Mr));

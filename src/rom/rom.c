@@ -392,7 +392,7 @@ PetscErrorCode BoltROMCheckAtS0(BoltROM *rom, BoltOperator *op, BoltAssembler *a
   PetscCall(VecDuplicate(BoltLoadSetLoad(loads), &q));
   f = BoltLoadSetLoad(loads);
   PetscCall(BoltDirectSolverCreate(rom->comm, NULL, A, PETSC_FALSE, MATSOLVERMUMPS, &ksp));
-  PetscCall(BoltDirectSolverFactor(ksp));
+  PetscCall(BoltDirectSolverFactor(ksp, NULL));
   PetscCall(KSPSolve(ksp, f, q));
   /* compare at the contact DOFs and the probe */
   PetscCall(BoltContactSetScatter(c, BoltContactStateWork(sFull), q));

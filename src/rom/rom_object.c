@@ -84,9 +84,6 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
      must give the same history. */
   o->verify = PETSC_FALSE;
   PetscCall(PetscOptionsBool("-rom_verify", "Check the ROM: orthogonality of its basis, the FOM at s0, and online every gap at every solve and a refactorisation at every change (same history, slower)", NULL, o->verify, &o->verify, NULL));
-  o->checkOrthogonality = o->verify;
-  o->gapsEverywhere     = o->verify;
-  o->updateRank         = o->verify ? 0 : -1;
   PetscCall(PetscOptionsBool("-rom_view", "Print the reduction's settings before the offline phase", NULL, rom->view, &rom->view, NULL));
   PetscOptionsEnd();
   PetscCheck(o->coneShapes >= 0 && o->coneShapes <= 1, comm, PETSC_ERR_USER_INPUT, "-rom_cone_shapes must be within [0, 1], a fraction of the friction cone (got %g)", (double)o->coneShapes);

@@ -81,7 +81,8 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   /* Against a FOM that closes its gaps the increments want a near-hard penalty: 1e5 E/m (500 x
      the paper's), where the penalty law alone matches the augmented FOM. It needs the
      closed-contact Krylov shapes, which the basis always has: without them so stiff a penalty
-     locked the reduced interface (docs/decisions.md). The scale is relative to the FOM's penalty, whatever its law. */
+     locked the reduced interface (docs/decisions.md). The scale is relative to the FOM's
+     penalty, whatever its law. */
   rom->penaltyScale = rom->preloadState && BoltContactSetAugmented(contact) ? 1e5 / BoltContactSetPenaltyFactor(contact) : 1.0;
   if (o->trained) PetscCall(ROMTrainedSettings(rom, loads));
   /* the static shapes enrich the augmented ROM's basis too, where its own multipliers close the gaps */
@@ -207,10 +208,9 @@ PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact)
 
   PetscFunctionBeginUser;
   rom->bandScale      = ROMDefaultBand(contact, rom);
-  rom->updateRank     = o->updateRank;
   rom->holdUnmarked   = ROMDefaultHold(contact);
-  rom->gapsEverywhere = o->gapsEverywhere;
-  rom->updateRankUsed = rom->updateRank >= 0 ? rom->updateRank : (BoltContactSetIsComplementarity(contact) && !rom->augment ? (3 * rom->n) / 5 : 0);
+  rom->gapsEverywhere = o->verify;
+  rom->updateRankUsed = o->verify ? 0 : (BoltContactSetIsComplementarity(contact) && !rom->augment ? (3 * rom->n) / 5 : 0); /* 0: refactorise */
   PetscFunctionReturn(0);
 }
 

@@ -36,6 +36,7 @@ PetscErrorCode BoltDualFactorInto(BoltDual *d, Mat A, KSP ksp)
   BoltOperator  *op = d->op;
   Mat            Kc;
   PetscLogDouble t0, t1;
+  PCFailedReason reason;
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
@@ -58,16 +59,10 @@ PetscErrorCode BoltDualFactorInto(BoltDual *d, Mat A, KSP ksp)
   d->tContactStiffness += t1 - t0;
   PetscCall(PetscLogEventBegin(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
   PetscCall(KSPSetOperators(ksp, A, A));
-  PetscCall(BoltDirectSolverFactor(ksp));
+  PetscCall(BoltDirectSolverFactor(ksp, &reason));
   PetscCall(PetscLogEventEnd(BOLT_EVENT_FACTORIZATION, 0, 0, 0, 0));
-  {
-    PC             pc;
-    PCFailedReason reason;
-    PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCGetFailedReason(pc, &reason));
-    PetscCheck(reason != PC_FACTOR_OUTMEMORY, op->comm, PETSC_ERR_MEM, "%s: factorisation of the effective stiffness ran out of workspace at step %" PetscInt_FMT ", t = %g s, even after four larger tries: raise -%smat_mumps_icntl_14 or run on more memory", op->name, d->step, (double)d->time, op->prefix);
-    PetscCheck(reason == PC_NOERROR, op->comm, PETSC_ERR_NOT_CONVERGED, "%s: factorisation of the effective stiffness failed (%s) at step %" PetscInt_FMT ", t = %g s: the system is singular (a part held by contact alone lost all contact?)", op->name, PCFailedReasons[reason], d->step, (double)d->time);
-  }
+  PetscCheck(reason != PC_FACTOR_OUTMEMORY, op->comm, PETSC_ERR_MEM, "%s: factorisation of the effective stiffness ran out of workspace at step %" PetscInt_FMT ", t = %g s, even after four larger tries: raise -%smat_mumps_icntl_14 or run on more memory", op->name, d->step, (double)d->time, op->prefix);
+  PetscCheck(reason == PC_NOERROR, op->comm, PETSC_ERR_NOT_CONVERGED, "%s: factorisation of the effective stiffness failed (%s) at step %" PetscInt_FMT ", t = %g s: the system is singular (a part held by contact alone lost all contact?)", op->name, PCFailedReasons[reason], d->step, (double)d->time);
   PetscCall(PetscTime(&t0));
   d->tDisplacements += t0 - t1;
   d->factorizations++;

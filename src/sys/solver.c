@@ -68,25 +68,25 @@ static PetscBool BoltMumpsShortOfSpace(PetscInt infog1)
    which the PC records but does not raise, and every solve then returned Inf. MUMPS factorises
    only after a fresh analysis once a factorisation failed, so the PC is reset and set up again,
    with the margin doubled plus 20 (at least MUMPS's default, 20) for this solver's prefix, up to
-   four times; the later factorisations of that prefix keep the margin. Returns with the
-   factorisation's error as the PC records it, for the caller to report in its own terms. */
-PetscErrorCode BoltDirectSolverFactor(KSP ksp)
+   four times; the later factorisations of that prefix keep the margin. reason (or NULL): how
+   the last factorisation failed, the same on every rank (PC_NOERROR if it did not), for the
+   caller to report in its own terms. */
+PetscErrorCode BoltDirectSolverFactor(KSP ksp, PCFailedReason *reason)
 {
   PC            pc;
   Mat           A, P, F;
-  MatSolverType type;
-  PetscBool     isfactor;
+  MatSolverType type = NULL;
+  PetscBool     isfactor, mumps;
   const char   *prefix;
 
   PetscFunctionBeginUser;
   PetscCall(KSPSetUp(ksp));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &isfactor, PCLU, PCCHOLESKY, ""));
-  if (!isfactor) PetscFunctionReturn(0);
-  PetscCall(PCFactorGetMatSolverType(pc, &type));
-  if (!type || strcmp(type, MATSOLVERMUMPS)) PetscFunctionReturn(0);
+  if (isfactor) PetscCall(PCFactorGetMatSolverType(pc, &type));
+  mumps = (PetscBool)(isfactor && type && !strcmp(type, MATSOLVERMUMPS));
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-  for (PetscInt attempt = 0; attempt < 4; attempt++) {
+  for (PetscInt attempt = 0; mumps && attempt < 4; attempt++) {
     PetscInt infog1, margin;
     char     name[256], value[32];
     PetscCall(PCFactorGetMatrix(pc, &F));
@@ -105,6 +105,13 @@ PetscErrorCode BoltDirectSolverFactor(KSP ksp)
     PetscCall(MatDestroy(&A));
     PetscCall(MatDestroy(&P));
     PetscCall(KSPSetUp(ksp));
+  }
+  if (reason) {
+    PetscInt r; /* a factor's error is recorded where it was met */
+    PetscCall(PCGetFailedReason(pc, reason));
+    r = (PetscInt)*reason;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &r, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)ksp)));
+    *reason = (PCFailedReason)r;
   }
   PetscFunctionReturn(0);
 }
