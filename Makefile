@@ -138,11 +138,12 @@ friction: deps all
 	$(PYTHON) scripts/friction-scenes --level 1 --np 2 --rom --rom-train 300 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 8 --amplitudes 30 100 --ringdown --results
 
 # The Brake-Reuss beam: its modes about the preloaded state (stuck, and the lap frictionless) at
-# levels 0.5, 1 and 1.5, and its backbone from ring-downs with friction at level 0.5
-# (output/brb-*, docs/results.md; about 25 min).
+# levels 0.5, 1 and 1.5, and its backbone from ring-downs with friction at levels 0.5 and 1 by
+# the FOM and by one ROM, end to end (output/brb-*, docs/results.md; about 50 min).
 brb: deps all
 	$(PYTHON) scripts/brb-modes --np $(NP) --levels 0.5 1 1.5 --results
-	$(PYTHON) scripts/brb-backbone --np $(NP) --level 0.5 --results
+	$(PYTHON) scripts/brb-backbone --np $(NP) --level 0.5 --rom --results
+	$(PYTHON) scripts/brb-backbone --np $(NP) --level 1 --rom --results
 
 # The axial load with friction against CalculiX at level 1, the load point held (16 increments)
 # and free (8), their JSON in docs/data/ and docs/ccx-friction-L1.png (docs/verification.md
