@@ -298,8 +298,8 @@ PetscErrorCode BoltROMOperatorCreate(BoltROM *rom, BoltOperator **opp)
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_CHECK_TRACTION, ROMOpenTractionAffine(rom, BoltOperatorState(op)) ? (void (*)(void))ROMCheckTraction : NULL));
   PetscCall(BoltOperatorSetOperation(op, BOLT_OP_SET_KEPT, ROMSetKeptApplies(rom, BoltOperatorState(op)) ? (void (*)(void))ROMSetKept : NULL));
   if (rom->tie) PetscCall(BoltOperatorSetOperation(op, BOLT_OP_HELD_TRACTIONS, (void (*)(void))ROMHeldTractions));
+  PetscCall(ROMSetUpPairForces(rom, BoltContactStateMayChange(BoltOperatorState(op)))); /* the node pairs, before the updates that count them */
   PetscCall(BoltROMUpdateCreate(rom, op, rom->updateRankUsed));
-  PetscCall(ROMSetUpPairForces(rom, BoltContactStateMayChange(BoltOperatorState(op))));
   PetscCall(PetscFree2(rom->fAcc, rom->fParts));
   if (rom->update) PetscCall(PetscMalloc2(2 * n + 1, &rom->fAcc, 2 * n * rom->npOwned + 1, &rom->fParts));
   rom->fGridValid = rom->fPartsValid = PETSC_FALSE;

@@ -200,8 +200,8 @@ PetscErrorCode ROMReuseFile(BoltROM *rom, BoltContactSet *contact, BoltLoadSet *
 
 /* The online settings, which depend on the basis: the activation band, which points are held,
    the largest low-rank update of the factorisation. Low-rank updates by default where the
-   active set is expected to move (the strict law's penalty ROM); the stick law's keeps
-   refactorising, as in the paper. */
+   active set is expected to move (the strict law's penalty ROM, nodal points); the stick law's
+   keeps refactorising, as in the paper. */
 PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact)
 {
   BoltReductionOptions *o = &rom->opt;
@@ -210,7 +210,7 @@ PetscErrorCode ROMResolveOnline(BoltROM *rom, BoltContactSet *contact)
   rom->bandScale      = ROMDefaultBand(contact, rom);
   rom->holdUnmarked   = ROMDefaultHold(contact);
   rom->gapsEverywhere = o->verify;
-  rom->updateRankUsed = o->verify ? 0 : (BoltContactSetIsComplementarity(contact) && !rom->augment ? (3 * rom->n) / 5 : 0); /* 0: refactorise */
+  rom->updateRankUsed = o->verify ? 0 : (BoltContactSetIsComplementarity(contact) && !rom->augment && BoltContactSetQuadrature(contact) == BOLT_QUADRATURE_NODAL ? (3 * rom->n) / 5 : 0); /* 0: refactorise */
   PetscFunctionReturn(0);
 }
 

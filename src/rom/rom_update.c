@@ -6,19 +6,23 @@
 
      A = A_ref + U S U',   x = y - Z w,   (I + S G) w = S U' y,   y = A_ref^-1 b,
 
-   U holding the rows of D = V_b - V_a of the node pairs whose penalty block differs from the
-   reference's (three columns per node of a contact element: a "slot"), S the differences of
-   those blocks, Z = A_ref^-1 U and G = U' Z. Each reference keeps Z and G of every slot that
-   has differed from it (its pool), so a change of the set costs the solves of the slots new to
-   the pool and the factorisation of I + S G, of size 3k for k differing slots (with nodal points
-   the smaller symmetric system of src/sys/capacitance.c). Where every reference differs by more
-   columns than the largest update (3/5 of the dimension; 0 with -rom_verify), or its pool is
-   full, or I + S G is singular, the current state is factorised and becomes a reference,
-   replacing the one unused longest. The joint opens and
-   closes through the same states period after period, so a few references carry a whole run.
+   U holding the rows of D = V_b - V_a of the node pairs whose penalty blocks differ from the
+   reference's (three columns per node pair, a "slot": the points of one pair, in up to four
+   contact elements, share its rows, so their differences sum into one 3 x 3 block; taken per
+   point, they made a correction three to four times the rank it needs), S those blocks, Z =
+   A_ref^-1 U and G = U' Z. Each reference keeps Z and G of every slot that has differed from it
+   (its pool), so a change of the set costs the solves of the slots new to the pool and the
+   factorisation of I + S G, the symmetric system of the k differing slots' blocks
+   (src/sys/capacitance.c). Updates need nodal points (each point's block touches its own node
+   alone); the ROM refactorises otherwise. Where every reference differs by more columns than the
+   largest update (3/5 of the dimension; 0 with -rom_verify), or its pool is full, or I + S G is
+   singular, the current state is factorised and becomes a reference, replacing the one unused
+   longest. The joint opens and closes through the same states period after period, so a few
+   references carry a whole run.
 
-   Every rank holds the references and the correction, built from the slots' records gathered
-   and put in the order of their names (element key and node): the ROM's history has the same
+   Every rank holds the references and the correction, built from the differing points' records
+   gathered, put in the order of their names (element key and node) and merged per node pair in
+   that order: the ROM's history has the same
    bits on any partition (each rank makes the same BLAS and LAPACK calls on the same data, or
    takes its share of calls cut the same way on any number of ranks and gathers the others'). */
 #include "private/rom.h"
@@ -35,7 +39,7 @@ typedef struct {
   KSP        ksp;
   PetscReal *Ke;       /* 144 per local element: its penalty blocks */
   PetscBool *dev;      /* per local element: the current block differs from it */
-  PetscInt  *slotOf;   /* 4 per local element: the node's slot in its pool, -1 if none */
+  PetscInt  *slotOf;   /* per node pair (all of them): its slot in the pool, -1 if none */
   PetscInt   nslot;    /* its pool, the same on every rank */
   PetscReal *U, *Z, *G; /* n x 3 per slot, n x 3 per slot, 3 alloc x 3 alloc (column-major) */
 } ROMReference;
@@ -47,12 +51,13 @@ struct BoltROMUpdate_s {
   BoltDual    *dual;           /* the loop whose solves these are */
   PetscReal   *Kcur;           /* 144 per local element: the current penalty blocks */
   PetscBool   *devRun;         /* per local element: the current block differs from the one in K_cr */
-  /* the correction in force: k slots, in the order of their names */
+  /* the correction in force: k node pairs, in the order of their first point's name */
   PetscInt      k;
-  PetscInt     *act, *first, *last, *node; /* per active slot: pool slot, its element's first and last active slot, its node */
-  PetscReal    *S;               /* 36 per active slot: its rows of the element's difference (3 x 12, row-major) */
-  PetscReal    *C, *t, *w; /* C: S whole where it is not block-diagonal */
-  PetscReal       *B;   /* S's 3 x 3 block per slot, where S is block-diagonal */
+  PetscInt     *act;             /* per active pair: its pool slot */
+  PetscInt     *pairAt, *pairOf; /* per node pair (all): its place among the active ones (-1: none); per active one: its node pair */
+  PetscInt     *mark;            /* per reference and node pair: whether the pair differs from it (counting) */
+  PetscReal    *t, *w;
+  PetscReal       *B;   /* S's 3 x 3 block per active pair */
   PetscInt        *idx; /* each column's row of G */
   BoltCapacitance *cap; /* the system of I + S G */
   /* gathering */
@@ -90,7 +95,7 @@ static PetscErrorCode ROMReferenceMake(BoltROM *rom, BoltOperator *op, BoltDual 
 
   PetscFunctionBeginUser;
   if (!ref->Ke) { /* made when first needed: a scene whose set holds uses one */
-    PetscCall(PetscMalloc3(144 * ne + 1, &ref->Ke, ne + 1, &ref->dev, 4 * ne + 1, &ref->slotOf));
+    PetscCall(PetscMalloc3(144 * ne + 1, &ref->Ke, ne + 1, &ref->dev, rom->npGlobal + 1, &ref->slotOf));
     PetscCall(PetscMalloc3(3 * rom->n * u->alloc, &ref->U, 3 * rom->n * u->alloc, &ref->Z, 9 * u->alloc * u->alloc, &ref->G));
   }
   for (PetscInt e = 0; e < ne; e++) {
@@ -108,7 +113,7 @@ static PetscErrorCode ROMReferenceMake(BoltROM *rom, BoltOperator *op, BoltDual 
   PetscCall(BoltDualFactorInto(d, ref->A, ref->ksp)); /* K_cr brought to the current state there */
   PetscCall(PetscArraycpy(ref->Ke, u->Kcur, 144 * ne));
   for (PetscInt e = 0; e < ne; e++) ref->dev[e] = PETSC_FALSE;
-  for (PetscInt i = 0; i < 4 * ne; i++) ref->slotOf[i] = -1;
+  for (PetscInt i = 0; i < rom->npGlobal; i++) ref->slotOf[i] = -1;
   ref->nslot       = 0;
   ref->valid       = PETSC_TRUE;
   PetscCall(BoltDualGetEffective(d, &ref->dynamic, &ref->massCoef, &ref->dampingCoef));
@@ -170,38 +175,48 @@ static PetscErrorCode ROMSolveNewSlots(BoltROM *rom, ROMReference *ref, PetscInt
   PetscFunctionReturn(0);
 }
 
-/* The correction of reference r for the current state, if it fits: the slots' records gathered
-   in the order of their names, new slots added to its pool (their columns of U from the node
-   pairs' rows every rank holds), I + S G factorised. */
+/* The correction of reference r for the current state, if it fits: the differing points' records
+   gathered in the order of their names, merged per node pair (the points of a pair share its rows
+   D: one slot each, its block the sum of theirs, added in name order), new slots added to its pool
+   (their columns of U from the node pairs' rows every rank holds), I + S G factorised. With nodal
+   points S is block-diagonal, a symmetric 3 x 3 block per pair; otherwise nothing is corrected. */
 static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *done)
 {
   BoltROMUpdate  *u   = rom->update;
   ROMReference   *ref = &u->ref[r];
   BoltContactSet *c   = rom->contact;
   const PetscInt  ne = BoltContactSetElementCount(c);
-  const PetscInt  n = rom->n, recLen = 3 + 36, LD = 3 * u->alloc;
-  PetscBool       ok, blocks;
-  PetscInt        nsend = 0, nrec = 0, total = 0, nnew = 0, m, mine;
+  const PetscInt  n = rom->n, recLen = 3 + 9, LD = 3 * u->alloc;
+  PetscBool       ok, blocks = PETSC_TRUE;
+  PetscInt        nsend = 0, total = 0, nrec, npair = 0, nnew = 0, mine;
 
   PetscFunctionBeginUser;
   *done = PETSC_FALSE;
-  /* a record per differing slot: name, pool slot (-1: new), node pair (-1: both nodes clamped),
-     its three rows of the difference */
+  /* a record per differing point of a node pair: name, node pair, whether its difference is its
+     own node's block alone, that block */
   for (PetscInt e = 0; e < ne; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++)
-      if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) nsend += recLen;
+      if (rom->npOfPoint[4 * e + a] >= 0 && ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) nsend += recLen;
   PetscCall(BoltGrowReal(&u->send, &u->sendAlloc, nsend + 1));
   nsend = 0;
   for (PetscInt e = 0; e < ne; e++)
     for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
       const PetscReal *cur = &u->Kcur[144 * e], *ke = &ref->Ke[144 * e];
       PetscReal       *r0  = &u->send[nsend];
-      if (!ROMSlotDiffers(cur, ke, a)) continue;
-      r0[0] = (PetscReal)(4 * BoltContactSetElementKey(c, e) + a);
-      r0[1] = (PetscReal)ref->slotOf[4 * e + a];
-      r0[2] = (PetscReal)rom->npOfPoint[4 * e + a];
+      PetscBool        own = PETSC_TRUE;
+      if (rom->npOfPoint[4 * e + a] < 0 || !ROMSlotDiffers(cur, ke, a)) continue; /* both nodes clamped: nothing reaches the ROM */
       for (PetscInt q = 0; q < 3; q++)
-        for (PetscInt b = 0; b < 12; b++) r0[3 + 12 * q + b] = cur[12 * (3 * a + q) + b] - ke[12 * (3 * a + q) + b];
+        for (PetscInt b = 0; b < 12; b++) {
+          const PetscReal d = cur[12 * (3 * a + q) + b] - ke[12 * (3 * a + q) + b];
+          if (b / 3 == a) r0[3 + q + 3 * (b % 3)] = d;
+          else if (d != 0) own = PETSC_FALSE;
+        }
+      for (PetscInt q = 0; q < 3 && own; q++)
+        for (PetscInt l = 0; l < 3; l++)
+          if (r0[3 + q + 3 * l] != r0[3 + l + 3 * q]) own = PETSC_FALSE;
+      r0[0] = (PetscReal)(4 * BoltContactSetElementKey(c, e) + a);
+      r0[1] = (PetscReal)rom->npOfPoint[4 * e + a];
+      r0[2] = own ? 1.0 : 0.0;
       nsend += recLen;
     }
   PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, u->send, nsend, &u->recv, &u->recvAlloc, &total, &mine));
@@ -214,11 +229,27 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   for (PetscInt pos = 0, i = 0; pos < total; i++) {
     u->name[i] = (PetscInt)u->recv[pos];
     u->perm[i] = pos;
-    if (u->recv[pos + 1] < 0) nnew++;
+    if (u->recv[pos + 2] == 0) blocks = PETSC_FALSE;
     pos += recLen;
   }
+  if (!blocks) PetscFunctionReturn(0);
   PetscCall(PetscSortIntWithArray(nrec, u->name, u->perm)); /* names in order, perm: where their records are */
-  if (3 * nrec > u->maxRank || ref->nslot + nnew > u->alloc) PetscFunctionReturn(0);
+  /* the node pairs in the order of their first point's name, each block summed in name order */
+  for (PetscInt i = 0; i < nrec; i++) {
+    const PetscReal *r0 = &u->recv[u->perm[i]];
+    const PetscInt   k  = (PetscInt)r0[1];
+    if (u->pairAt[k] < 0) {
+      if (npair == u->alloc) break; /* more pairs than any pool holds */
+      u->pairAt[k]     = npair;
+      u->pairOf[npair] = k;
+      PetscCall(PetscArrayzero(&u->B[9 * npair], 9));
+      if (ref->slotOf[k] < 0) nnew++;
+      npair++;
+    }
+    for (PetscInt j = 0; j < 9; j++) u->B[9 * u->pairAt[k] + j] += r0[3 + j];
+  }
+  for (PetscInt i = 0; i < npair; i++) u->pairAt[u->pairOf[i]] = -1;
+  if (npair == u->alloc || 3 * npair > u->maxRank || ref->nslot + nnew > u->alloc) PetscFunctionReturn(0);
   /* new slots join the pool, side by side after the others: Z = A_ref^-1 U in solves with many
      right-hand sides shared among the ranks, and G's new columns U' Z_new (and rows, by symmetry) */
   if (nnew) {
@@ -226,13 +257,11 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
     PetscBLASInt   bn, bmo, bmn, bld;
     PetscReal      one = 1, zero = 0;
     u->largestBatch = PetscMax(u->largestBatch, nnew);
-    for (PetscInt i = 0; i < nrec; i++) {
-      PetscReal     *r0 = &u->recv[u->perm[i]];
-      const PetscInt k  = (PetscInt)r0[2];
-      if (r0[1] >= 0) continue;
-      if (k >= 0) PetscCall(PetscArraycpy(&ref->U[3 * n * ref->nslot], &rom->npRowsAll[3 * n * k], 3 * n));
-      else PetscCall(PetscArrayzero(&ref->U[3 * n * ref->nslot], 3 * n));
-      r0[1] = (PetscReal)ref->nslot++;
+    for (PetscInt i = 0; i < npair; i++) {
+      const PetscInt k = u->pairOf[i];
+      if (ref->slotOf[k] >= 0) continue;
+      PetscCall(PetscArraycpy(&ref->U[3 * n * ref->nslot], &rom->npRowsAll[3 * n * k], 3 * n));
+      ref->slotOf[k] = ref->nslot++;
     }
     PetscCall(ROMSolveNewSlots(rom, ref, first, nnew));
     PetscCall(PetscBLASIntCast(n, &bn));
@@ -243,49 +272,12 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
     for (PetscInt j = mo; j < mo + mn; j++) /* the new rows: the old columns' part, transposed */
       for (PetscInt i = 0; i < mo; i++) ref->G[j + LD * i] = ref->G[i + LD * j];
   }
-  /* the owners note their new slots' places (their records, in the order they were sent) */
-  for (PetscInt e = 0, pos = mine; e < ne; e++)
-    for (PetscInt a = 0; a < 4 && ref->dev[e]; a++) {
-      if (!ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) continue;
-      if (ref->slotOf[4 * e + a] < 0) ref->slotOf[4 * e + a] = (PetscInt)u->recv[pos + 1];
-      pos += recLen;
-    }
-  /* the correction: its slots, S, U and Z side by side, and I + S G factorised */
-  m = 3 * nrec;
-  for (PetscInt i = 0; i < nrec; i++) {
-    const PetscReal *r0 = &u->recv[u->perm[i]];
-    u->act[i]           = (PetscInt)r0[1];
-    u->node[i]          = u->name[i] % 4;
-    PetscCall(PetscArraycpy(&u->S[36 * i], r0 + 3, 36));
-    u->first[i] = (i > 0 && u->name[i - 1] / 4 == u->name[i] / 4) ? u->first[i - 1] : i;
-  }
-  for (PetscInt i = nrec - 1; i >= 0; i--) u->last[i] = (i < nrec - 1 && u->name[i + 1] / 4 == u->name[i] / 4) ? u->last[i + 1] : i;
-  /* the system of I + S G (src/sys/capacitance.c). With nodal points a slot's rows of its
-     element's difference touch its own node alone: S is block-diagonal, its blocks symmetric */
-  for (PetscInt i = 0; i < 3 * nrec; i++) u->idx[i] = 3 * u->act[i / 3] + i % 3;
-  ok        = PETSC_TRUE;
-  blocks    = PETSC_TRUE;
-  for (PetscInt i = 0; i < nrec && blocks; i++)
-    for (PetscInt p = 0; p < 3; p++)
-      for (PetscInt c = 0; c < 12; c++) {
-        const PetscReal *Si = &u->S[36 * i];
-        if (c / 3 == u->node[i] ? Si[12 * p + c] != Si[12 * (c % 3) + 3 * u->node[i] + p] : Si[12 * p + c] != 0) blocks = PETSC_FALSE;
-      }
-  if (blocks) {
-    for (PetscInt i = 0; i < nrec; i++)
-      for (PetscInt l = 0; l < 3; l++)
-        for (PetscInt q = 0; q < 3; q++) u->B[9 * i + l + 3 * q] = u->S[36 * i + 12 * l + 3 * u->node[i] + q];
-    PetscCall(BoltCapacitanceFactorBlocks(u->cap, nrec, u->B, ref->G, LD, u->idx, &ok));
-  } else { /* S whole: each slot's rows over its element's active slots */
-    PetscCall(PetscArrayzero(u->C, m * m));
-    for (PetscInt i = 0; i < nrec; i++)
-      for (PetscInt l = u->first[i]; l <= u->last[i]; l++)
-        for (PetscInt p = 0; p < 3; p++)
-          for (PetscInt q = 0; q < 3; q++) u->C[3 * i + p + m * (3 * l + q)] = u->S[36 * i + 12 * p + 3 * u->node[l] + q];
-    PetscCall(BoltCapacitanceFactor(u->cap, m, u->C, ref->G, LD, u->idx, &ok));
-  }
+  /* the correction: its slots and I + S G factorised (src/sys/capacitance.c) */
+  for (PetscInt i = 0; i < npair; i++) u->act[i] = ref->slotOf[u->pairOf[i]];
+  for (PetscInt i = 0; i < 3 * npair; i++) u->idx[i] = 3 * u->act[i / 3] + i % 3;
+  PetscCall(BoltCapacitanceFactorBlocks(u->cap, npair, u->B, ref->G, LD, u->idx, &ok));
   if (!ok) PetscFunctionReturn(0); /* singular: this reference cannot carry the state */
-  u->k          = nrec;
+  u->k          = npair;
   u->cur        = r;
   ref->lastUsed = u->clock++;
   *done         = PETSC_TRUE;
@@ -337,16 +329,20 @@ static PetscErrorCode ROMUpdateFactor(BoltOperator *op, BoltDual *d)
     for (PetscInt r = 0; r < ROM_REFERENCES; r++)
       if (u->ref[r].valid) u->ref[r].dev[e] = ROMBlockDiffers(cur, &u->ref[r].Ke[144 * e]);
   }
-  /* the references by the number of slots they differ in (over all ranks) */
+  /* the references by the number of node pairs they differ in (over all ranks) */
+  PetscCall(PetscArrayzero(u->mark, ROM_REFERENCES * rom->npGlobal));
   for (PetscInt r = 0; r < ROM_REFERENCES; r++) {
     ROMReference *ref = &u->ref[r];
-    slots[r]          = 0;
     if (!ref->valid) continue;
     for (PetscInt e = 0; e < BoltContactSetElementCount(c); e++)
       for (PetscInt a = 0; a < 4 && ref->dev[e]; a++)
-        if (ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) slots[r]++;
+        if (rom->npOfPoint[4 * e + a] >= 0 && ROMSlotDiffers(&u->Kcur[144 * e], &ref->Ke[144 * e], a)) u->mark[rom->npGlobal * r + rom->npOfPoint[4 * e + a]] = 1;
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, slots, ROM_REFERENCES, MPIU_INT, MPI_SUM, rom->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, u->mark, ROM_REFERENCES * rom->npGlobal, MPIU_INT, MPI_MAX, rom->comm));
+  for (PetscInt r = 0; r < ROM_REFERENCES; r++) {
+    slots[r] = 0;
+    for (PetscInt k = 0; k < rom->npGlobal; k++) slots[r] += u->mark[rom->npGlobal * r + k];
+  }
   for (PetscInt r = 0; r < ROM_REFERENCES; r++)
     if (u->ref[r].valid && 3 * slots[r] <= u->maxRank) order[nvalid++] = r;
   for (PetscInt i = 1; i < nvalid; i++) /* nearest first; ties: the one used last */
@@ -442,8 +438,9 @@ PetscErrorCode BoltROMUpdateCreate(BoltROM *rom, BoltOperator *op, PetscInt maxR
   PetscCall(PetscMalloc2(144 * ne + 1, &u->Kcur, ne + 1, &u->devRun));
   PetscCall(PetscArraycpy(u->Kcur, rom->Ke, 144 * ne)); /* K_cr is built: its blocks are the current ones */
   for (PetscInt e = 0; e < ne; e++) u->devRun[e] = PETSC_FALSE;
-  PetscCall(PetscMalloc5(u->alloc, &u->act, u->alloc, &u->first, u->alloc, &u->last, u->alloc, &u->node, 36 * u->alloc, &u->S));
-  PetscCall(PetscMalloc3(9 * u->alloc * u->alloc, &u->C, 3 * u->alloc, &u->t, 3 * u->alloc, &u->w));
+  PetscCall(PetscMalloc4(u->alloc, &u->act, rom->npGlobal + 1, &u->pairAt, u->alloc, &u->pairOf, ROM_REFERENCES * rom->npGlobal + 1, &u->mark));
+  for (PetscInt k = 0; k < rom->npGlobal; k++) u->pairAt[k] = -1;
+  PetscCall(PetscMalloc2(3 * u->alloc, &u->t, 3 * u->alloc, &u->w));
   PetscCall(PetscMalloc2(9 * u->alloc, &u->B, 3 * u->alloc, &u->idx));
   PetscCall(BoltCapacitanceCreate(&u->cap));
   rom->update    = u;
@@ -480,8 +477,8 @@ PetscErrorCode BoltROMUpdateDestroy(BoltROMUpdate **up)
     PetscCall(KSPDestroy(&ref->ksp));
   }
   PetscCall(PetscFree2(u->Kcur, u->devRun));
-  PetscCall(PetscFree5(u->act, u->first, u->last, u->node, u->S));
-  PetscCall(PetscFree3(u->C, u->t, u->w));
+  PetscCall(PetscFree4(u->act, u->pairAt, u->pairOf, u->mark));
+  PetscCall(PetscFree2(u->t, u->w));
   PetscCall(PetscFree2(u->B, u->idx));
   PetscCall(BoltCapacitanceDestroy(&u->cap));
   PetscCall(PetscFree(u->send));
