@@ -188,7 +188,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
   const PetscInt  ne = BoltContactSetElementCount(c);
   const PetscInt  n = rom->n, recLen = 3 + 9, LD = 3 * u->alloc;
   PetscBool       ok, blocks = PETSC_TRUE;
-  PetscInt        nsend = 0, total = 0, nrec, npair = 0, nnew = 0, mine;
+  PetscInt        nsend = 0, total = 0, nrec, npair = 0, nnew = 0;
 
   PetscFunctionBeginUser;
   *done = PETSC_FALSE;
@@ -219,7 +219,7 @@ static PetscErrorCode ROMReferenceCorrect(BoltROM *rom, PetscInt r, PetscBool *d
       r0[2] = own ? 1.0 : 0.0;
       nsend += recLen;
     }
-  PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, u->send, nsend, &u->recv, &u->recvAlloc, &total, &mine));
+  PetscCall(BoltGatherAll(rom->comm, MPIU_REAL, u->send, nsend, &u->recv, &u->recvAlloc, &total, NULL));
   nrec = total / recLen;
   if (nrec > u->recAlloc) {
     u->recAlloc = PetscMax(nrec, 2 * u->recAlloc);
