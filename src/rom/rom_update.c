@@ -9,7 +9,7 @@
    U holding the rows of D = V_b - V_a of the node pairs whose penalty blocks differ from the
    reference's (three columns per node pair, a "slot": the points of one pair, in up to four
    contact elements, share its rows, so their differences sum into one 3 x 3 block; taken per
-   point, they made a correction three to four times the rank it needs), S those blocks, Z =
+   point, the correction would have three to four times the rank it needs), S those blocks, Z =
    A_ref^-1 U and G = U' Z. Each reference keeps Z and G of every slot that has differed from it
    (its pool), so a change of the set costs the solves of the slots new to the pool and the
    factorisation of I + S G, the symmetric system of the k differing slots' blocks
