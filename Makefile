@@ -122,7 +122,9 @@ stress-strict: deps all
 # up to 700 N, below the joint's sliding as a whole, with one trained on a stepped sine from 10 to
 # 700 N (-rom-trained10to700/); then both again with cone shapes and 150 modes (-m150-cone), the
 # harmonic loads along z with them, along x with the normal shapes alone (-m150-cone-normal-c8),
-# and at level 1 on 2 ranks (about 26 min of the target's time).
+# and at level 1 on 2 ranks (about 26 min of the target's time). Last, the default ROM against the
+# reduced contact's frictional acceptance over eight scenes at levels 0.5 and 1 (scripts/rom-friction,
+# output/rom-friction-L*/, about 17 min).
 friction: deps all
 	$(PYTHON) scripts/friction-scenes --results
 	$(PYTHON) scripts/friction-scenes --rom --ringdown --results
@@ -136,6 +138,8 @@ friction: deps all
 	$(PYTHON) scripts/friction-scenes --rom --rom-train 300 --rom-train-from 10 --rom-cone 0.999 --rom-cone-normal --rom-modes 150 --cycles 8 --amplitudes 10 20 30 50 100 200 300 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --direction z --rom --rom-train 1000 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 3 --amplitudes 10 30 100 300 1000 --ringdown --results
 	$(PYTHON) scripts/friction-scenes --level 1 --np 2 --rom --rom-train 300 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 8 --amplitudes 30 100 --ringdown --results
+	$(PYTHON) scripts/rom-friction --level 0.5 --results
+	$(PYTHON) scripts/rom-friction --level 1 --results
 
 # The Brake-Reuss beam: its modes about the preloaded state (stuck, and the lap frictionless) at
 # levels 0.5, 1 and 1.5, and its backbone from ring-downs with friction at levels 0.5 and 1 by

@@ -60,3 +60,11 @@ def backbone(t, x, release, periods=3):
         f0 = omega / (2 * np.pi)
         start += 1 / f0
     return rows
+
+
+def cycle_differences(reference, other, counted):
+    """Per cycle, other's relative difference from reference, or None where the reference cycle
+    dissipates less than the share counted of its largest cycle (such a cycle's relative figure
+    says nothing: a ROM may well dissipate twice a negligible amount)."""
+    largest = max(abs(r) for r in reference) if reference else 0.0
+    return [(o - r) / r if largest > 0 and abs(r) >= counted * largest else None for r, o in zip(reference, other)]

@@ -187,7 +187,7 @@ def test_interface_reduced_rom_follows_the_frictional_joint(joint_small, tmp_pat
 def test_rom_slip_shapes_carry_the_dissipation_of_a_sine_along_x(joint_small, tmp_path):
     """A 300 N sine along x (50 Hz) on the joint at level 0.5 under 5 kN: over its first quarter
     period the interface-reduced ROM dissipates the FOM's energy to 1 % (measured 0.07 %). Its slip
-    shapes are those of the pairs beyond the cone, sticking, at -/+ 4 x the load; with those at
+    shapes are those of the pairs beyond the cone, sticking, at -/+ 16 x the load; with those at
     twice the load only the ROM fell 3.8 % short (4.3 % over the whole period): the sticking
     solve's zone beyond the cone is narrower than the slip zone. The force the plate interface
     transmits (/rom/pair_force) follows the FOM's to 2 % of its peak along x and 0.5 % of the
@@ -204,6 +204,34 @@ def test_rom_slip_shapes_carry_the_dissipation_of_a_sine_along_x(joint_small, tm
     assert fom > 1e-4 and rom == pytest.approx(fom, rel=0.01)
     assert np.max(np.abs(pr[:, 0] - pf[:, 0])) <= 0.02 * np.max(np.abs(pf[:, 0]))
     assert np.max(np.abs(pr[:, 3] - pf[:, 3])) <= 0.005 * np.max(np.abs(pf[:, 3]))
+    assert s["rom"]["failures"] == 0 and s["fom"]["failures"] == 0
+
+
+def test_slip_shapes_reach_the_zone_a_resonant_sine_makes_slip(joint_small, tmp_path):
+    """A 50 N sine along x at the corner point, 80 Hz (near the joint's first bending mode, so the
+    response grows over the cycles), 5 kN, mu 0.2, four cycles at level 0.5 (scene mu0.2-P5k-CX50
+    of scripts/rom-friction): the default ROM's e_L2 is within 0.5 % and its friction dissipation
+    within 2 % of the FOM's in every cycle. With slip shapes at -/+ 4 x the load the ROM fell
+    4.3 % and 4.8 % short in the last two cycles (measured; at 16 x, the default, +0.8 % at most):
+    the resonant response makes pairs slip that a static solve at a few times the load leaves
+    stuck."""
+    import sys
+    sys.path.insert(0, str(ROOT / "python"))
+    from friction_analysis import cycle_differences, per_cycle
+    from rom_errors import errors
+    mesh, _ = joint_small
+    s = run_summary(["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-ts_end", "0.05",
+                     "-preload_force", "5000", "-load_force", "50", "-load_history", "sine", "-load_frequency", "80",
+                     "-load_direction", "1,0,0", "-probe_component", "0", "-load_group", "corner_point",
+                     "-contact_law", "coulomb", "-contact_friction", "0.2", "-rom", "true", "-rom_file", "",
+                     "-output_dir", tmp_path, "-output_name", "run"], tmp_path, ranks=2)
+    with h5py.File(tmp_path / "run.h5") as f:
+        t = np.array(f["fom/time"]).ravel()
+        fom, rom = (per_cycle(t, np.array(f[f"{m}/dissipated"]).ravel(), 1 / 80, 4) for m in ("fom", "rom"))
+        e_l2 = errors(np.array(f["rom/probe"]).ravel(), np.array(f["fom/probe"]).ravel())[0]
+    diffs = cycle_differences(fom, rom, 0.01)
+    assert None not in diffs and max(abs(d) for d in diffs) <= 0.02
+    assert e_l2 <= 5e-3
     assert s["rom"]["failures"] == 0 and s["fom"]["failures"] == 0
 
 
@@ -298,8 +326,8 @@ def test_rom_built_without_the_fom_starts_from_the_fom_preloaded_state(joint_sma
     """A ROM built in a run without the FOM (-fom false) solves the FOM's preloaded state itself,
     with the friction's slip (the preload alone makes about 200 of 704 points slip): its history
     is the one of the same ROM built beside the FOM, which hands it its state: the preloaded probe
-    to 1e-5 (measured 1.2e-7) and the history over 10 steps to 1e-8 of its largest value (measured
-    2e-10). Solved with every point sticking, the preloaded probe was 13 % off and the history
+    to 1e-5 (measured 1.2e-7) and the history over 10 steps to 1e-7 of its largest value, the
+    friction loop's tolerance (measured 2.3e-8 with slip shapes at 16 x the load, 2e-10 at 4 x). Solved with every point sticking, the preloaded probe was 13 % off and the history
     1.5e-4; solved with the slip but on the ROM's own operator (whose state kept the solve's
     working data), the history was 4.5e-5 off, and on a sine along x the shapes' static solves
     marked other pairs and stopped converging."""
@@ -313,7 +341,7 @@ def test_rom_built_without_the_fom_starts_from_the_fom_preloaded_state(joint_sma
         with h5py.File(tmp_path / fom / "run.h5") as f:
             hist[fom] = np.array(f["rom/probe"])
     assert abs(hist["false"][0] - hist["true"][0]) <= 1e-5 * abs(hist["true"][0])
-    assert np.abs(hist["false"] - hist["true"]).max() <= 1e-8 * np.abs(hist["true"]).max()
+    assert np.abs(hist["false"] - hist["true"]).max() <= 1e-7 * np.abs(hist["true"]).max()
 
 
 def test_cyclic_load_dissipates_four_mu_n_times_the_slip_amplitude(blocks, tmp_path):
@@ -485,7 +513,7 @@ def test_backbone_and_loop_work_on_known_signals():
     sampled at 1e-4 s grows by (2k + 1) T^2 over cycle k of period T."""
     import sys
     sys.path.insert(0, str(ROOT / "python"))
-    from friction_analysis import backbone, loop_work, per_cycle
+    from friction_analysis import backbone, cycle_differences, loop_work, per_cycle
     f, zeta, dt = 90.0, 0.006, 1e-4
     t = np.arange(0, 0.2, dt)
     wn = 2 * np.pi * f / np.sqrt(1 - zeta ** 2)
@@ -504,19 +532,21 @@ def test_backbone_and_loop_work_on_known_signals():
     T = 0.02
     t = np.arange(0, 8 * T + 0.5 * dt, dt)
     assert per_cycle(t, t ** 2, T, 8) == pytest.approx([(2 * k + 1) * T ** 2 for k in range(8)], rel=1e-9)
+    # a cycle below the counted share of the largest has no relative figure
+    assert cycle_differences([1.0, 0.005, 2.0, -1.0], [1.1, 1.0, 2.0, -0.9], 0.01) == pytest.approx([0.1, None, 0.0, -0.1])
 
 
 def test_frictional_rom_with_shared_updates_same_on_1_and_2_ranks(joint_small, tmp_path):
-    """The interface-reduced ROM under friction (a 300 N sine along x, 5 kN, level 0.5), one ROM
+    """The interface-reduced ROM under friction (a 600 N sine along x, 5 kN, level 0.5), one ROM
     file run on one and on two ranks: the same history to the last bit (its dissipation to
     round-off). Its set changes are taken as low-rank updates whose new slots' solves, and K_cr's
     product for each new reference, are shared among the ranks in pieces cut by their size alone;
     at least once here more slots join a pool than one piece holds (16), so on two ranks both take
-    a share."""
+    a share. (At 300 N the ROM's slip shapes hold every change as an update: one factorisation.)"""
     mesh, _ = joint_small
     rom_file = tmp_path / "r.rom.h5"
     scene = ["-options_file", ROOT / "inputs" / "paper-step.yaml", "-mesh", mesh, "-preload_force", "5000",
-             "-load_force", "300", "-load_history", "sine", "-load_frequency", "50", "-load_direction", "1,0,0",
+             "-load_force", "600", "-load_history", "sine", "-load_frequency", "50", "-load_direction", "1,0,0",
              "-probe_component", "0", "-contact_law", "coulomb", "-contact_friction", str(MU), "-fom", "false",
              "-rom", "true", "-rom_file", rom_file, "-output_name", "run"]
     run_summary(scene + ["-ts_end", "1e-4", "-output", "false"], tmp_path / "build", ranks=2)

@@ -158,8 +158,8 @@ def test_rom_only_run_writes_its_displacement(rom_runs):
     run to run between 1.5e-9 and 1.8e-8 of the largest displacement (eight runs of this fixture,
     at e4ea1e8 and 99084c0; 1e-8 failed four of them), the size of the contact loop's tolerance
     rather than of round-off; where it comes from within one run is not traced. The same file on 1
-    and 3 ranks gives the same fields to 1e-8 (measured 8e-16 in most runs, 1.2e-9 in one of four
-    full-suite runs on a loaded machine)."""
+    and 3 ranks gives the same fields to 1e-7 (measured 8e-16 in most runs; on a loaded machine,
+    in full-suite runs, 1.2e-9 once and 1.5e-8 once)."""
     built, _ = fields(rom_runs / "both" / "run.h5", "rom_")
     scale = max(np.abs(u).max() for u in built.values())
     read = {}
@@ -170,7 +170,7 @@ def test_rom_only_run_writes_its_displacement(rom_runs):
         read[ranks], _ = fields(path, "rom_")
         assert read[ranks].keys() == built.keys()
         assert max(np.abs(read[ranks][k] - built[k]).max() for k in built) < 1e-7 * scale
-    assert max(np.abs(read[1][k] - read[3][k]).max() for k in built) < 1e-8 * scale
+    assert max(np.abs(read[1][k] - read[3][k]).max() for k in built) < 1e-7 * scale
     alone, _ = fields(rom_runs / "built" / "run.h5", "rom_")
     assert sorted(alone) == ["rom_final_displacement", "rom_snapshot_000000"]  # 20 steps: the start only
     assert (rom_runs / "built" / "run-rom-series.xmf").exists()

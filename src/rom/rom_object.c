@@ -68,7 +68,7 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
      behind each ("The construction's fixed settings"). */
   o->nClosed            = 3;
   o->openingScale       = 2;    /* the strict law's; resolved by the law when the ROM is built */
-  o->slipScale          = 4;
+  o->slipScale          = 16;
   o->nOpenKrylov        = 3;
   o->snapshotTol        = 1e-6;
   o->coneShapes = 0;

@@ -173,9 +173,8 @@ static PetscErrorCode ROMOpeningPairs(BoltAssembler *asmb, BoltContactSet *c, Bo
   PetscCall(PetscCalloc1(4 * BoltContactSetElementCount(c) + 1, &changed));
   /* Friction: the pairs beyond the cone, sticking, under -/+ slipScale x the load. Sticking, the
      joint keeps the load where the slip zone would shed it onto its neighbours, so the zone
-     beyond the cone at the swing's own size is narrower than the zone that slips (on a 300 N
-     sine along x at level 0.5, shapes at twice the load left the ROM 9.5 % short of the FOM's
-     dissipation per cycle; at four times, 0.3 %) */
+     beyond the cone at the swing's own size is narrower than the zone that slips; and a sine
+     near a mode of the joint swings several times its static response (docs/decisions.md) */
   if (BoltContactStateHasFriction(s) && rom->slipScale > 0 && rom->slipScale != openingScale)
     for (PetscInt sign = -1; sign <= 1; sign += 2) {
       PetscCall(VecCopy(BoltOperatorPreloadVec(op), rhs));
