@@ -35,6 +35,7 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *);
 PetscErrorCode BoltROMSolversSetFromOptions(BoltROM *);
 PetscErrorCode BoltROMCheckOptions(BoltROM *, BoltContactSet *);
 PetscErrorCode BoltROMSetTraining(BoltROM *, const BoltPreloadState *, PetscInt, Vec[], const PetscBool[]);
+PetscErrorCode BoltROMSetPeriodicLoad(BoltROM *, PetscBool);
 PetscBool      BoltROMIsTrained(const BoltROM *);
 PetscErrorCode BoltROMSetUp(BoltROM *, BoltAssembler *, BoltContactSet *, BoltLoadSet *);
 PetscErrorCode BoltROMView(BoltROM *, PetscViewer);

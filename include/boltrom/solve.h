@@ -115,6 +115,7 @@ PetscErrorCode BoltNewmarkGetModel(BoltNewmark *, BoltOperator **, BoltDual **, 
 PetscErrorCode BoltNewmarkGetTiming(BoltNewmark *, PetscReal *, PetscReal *);
 PetscErrorCode BoltNewmarkGetStaticSolve(BoltNewmark *, PetscReal *, PetscReal *);
 PetscErrorCode BoltNewmarkGetLoad(BoltNewmark *, BoltLoadHistory *, PetscReal *);
+PetscErrorCode BoltLoadHistoryFromOptions(BoltLoadHistory *);
 PetscErrorCode BoltNewmarkSetCheckpointBase(BoltNewmark *, const char[]);
 PetscErrorCode BoltNewmarkOptionsCheck(MPI_Comm, const char[], char[]);
 PetscErrorCode BoltNewmarkPreloadSummaryWrite(BoltNewmark *, BoltJSON *);

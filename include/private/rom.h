@@ -85,6 +85,8 @@ struct _n_BoltReductionOptions {
   PetscInt   nClosed;            /* closed-contact Krylov vectors */
   PetscReal  openingScale;       /* the load's scale whose changed pairs get opening shapes */
   PetscReal  slipScale;          /* friction: the load's scale whose pairs beyond the cone get shapes */
+  PetscReal  slipScalePeriodic;  /* ... under a periodic load (a sine can build up near a mode) */
+  PetscBool  periodicLoad;       /* the scene's load is a sine or a stepped sine (BoltROMSetPeriodicLoad) */
   PetscReal  coneShapes;         /* -rom_cone_shapes: friction, the pairs at this fraction of the cone in the preloaded state get shapes, 0 none */
   PetscBool  coneTraction;       /* -rom_cone_traction */
   PetscInt   coneModes;          /* -rom_cone_modes: the cone shapes compressed to this many per direction, 0 a shape per pair */

@@ -20,6 +20,11 @@ static PetscErrorCode BoltRunConfigure(BoltRun *r, char checkpointBase[])
   PetscCall(BoltLoadSetSetFromOptions(r->loads));
   PetscCall(BoltROMCreate(r->comm, &r->rom));
   PetscCall(BoltROMSetFromOptions(r->rom));
+  {
+    BoltLoadHistory history;
+    PetscCall(BoltLoadHistoryFromOptions(&history));
+    PetscCall(BoltROMSetPeriodicLoad(r->rom, (PetscBool)(history == BOLT_LOAD_SINE || history == BOLT_LOAD_SWEEP)));
+  }
   if (r->opt.rom) PetscCall(BoltROMCheckOptions(r->rom, r->contact));
   PetscCall(BoltPreflightSetFromOptions(r->comm, &r->opt, checkpointBase));
   PetscCall(BoltROMSolversSetFromOptions(r->rom)); /* PETSc's and SLEPc's options last: -help lists boltrom's first */

@@ -68,7 +68,8 @@ PetscErrorCode BoltROMSetFromOptions(BoltROM *rom)
      behind each ("The construction's fixed settings"). */
   o->nClosed            = 3;
   o->openingScale       = 2;    /* the strict law's; resolved by the law when the ROM is built */
-  o->slipScale          = 16;
+  o->slipScale          = 4;
+  o->slipScalePeriodic  = 16;
   o->nOpenKrylov        = 3;
   o->snapshotTol        = 1e-6;
   o->coneShapes = 0;
@@ -129,6 +130,14 @@ PetscErrorCode BoltROMCheckOptions(BoltROM *rom, BoltContactSet *contact)
    solved offline), its displacement snapshots (for -rom_snapshot_modes) and, per local contact
    point, whether its state left the preloaded one (for -rom_train). Referenced until SetUp
    returns. */
+/* Whether the scene's load is periodic: its slip shapes then reach further (docs/decisions.md). */
+PetscErrorCode BoltROMSetPeriodicLoad(BoltROM *rom, PetscBool periodic)
+{
+  PetscFunctionBeginUser;
+  rom->opt.periodicLoad = periodic;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltROMSetTraining(BoltROM *rom, const BoltPreloadState *fomPreload, PetscInt nsnap, Vec snap[], const PetscBool changed[])
 {
   PetscFunctionBeginUser;
@@ -209,6 +218,7 @@ PetscErrorCode BoltROMSummaryWrite(BoltROM *rom, BoltJSON *j)
   PetscCall(BoltJSONInt(j, "auto_tied", rom->autoTied)); /* -rom_train auto chose the tied ROM */
   PetscCall(BoltJSONInt(j, "closed_krylov", rom->nClosed));
   PetscCall(BoltJSONReal(j, "opening_scale", rom->openingScale));
+  PetscCall(BoltJSONReal(j, "slip_scale", rom->slipScale));
   PetscCall(BoltJSONInt(j, "opening_krylov", rom->nOpenKrylov));
   PetscCall(BoltJSONInt(j, "snapshot_modes", rom->nSnapshotModes));
   PetscCall(BoltJSONInt(j, "cone_pairs", rom->nConePairs));

@@ -96,7 +96,7 @@ PetscErrorCode ROMResolveSettings(BoltROM *rom, BoltAssembler *asmb, BoltContact
   if (o->trained) rom->openingScale = staticShapes && o->trainStatic ? o->openingScale : 0;
   else rom->openingScale = staticShapes ? (BoltContactSetIsComplementarity(contact) && rom->preloadState && o->nSnapshotModes == 0 ? o->openingScale : 0.0) : 0;
   rom->nOpenKrylov  = rom->openingScale > 0 && !o->trained ? o->nOpenKrylov : 0;
-  rom->slipScale    = rom->openingScale > 0 && BoltContactSetHasFriction(contact) ? o->slipScale : 0;
+  rom->slipScale    = rom->openingScale > 0 && BoltContactSetHasFriction(contact) ? (o->periodicLoad ? o->slipScalePeriodic : o->slipScale) : 0;
   rom->coneShapes   = staticShapes && rom->preloadState && BoltContactSetHasFriction(contact) && !o->trained ? o->coneShapes : 0;
   rom->coneTraction = o->coneTraction;
   rom->coneModes    = rom->coneShapes > 0 ? o->coneModes : 0;

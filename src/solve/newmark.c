@@ -46,10 +46,21 @@ PetscErrorCode BoltNewmarkCreate(BoltOperator *op, BoltNewmark **nmp)
   PetscFunctionReturn(0);
 }
 
+static const char *const BoltLoadHistories[] = {"step", "sine", "ramp", "release", "sweep", "BoltLoadHistory", "BOLT_LOAD_", NULL};
+
+/* The load's history as -load_history gives it (step if not given), for what is decided before
+   a time integrator exists: the ROM's construction depends on whether the load is periodic. */
+PetscErrorCode BoltLoadHistoryFromOptions(BoltLoadHistory *history)
+{
+  PetscFunctionBeginUser;
+  *history = BOLT_LOAD_STEP;
+  PetscCall(PetscOptionsGetEnum(NULL, NULL, "-load_history", BoltLoadHistories, (PetscEnum *)history, NULL));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
 {
-  MPI_Comm    comm = nm->op->comm;
-  const char *hist[] = {"step", "sine", "ramp", "release", "sweep", "BoltLoadHistory", "BOLT_LOAD_", NULL};
+  MPI_Comm comm = nm->op->comm;
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Time integration", "boltrom");
@@ -57,7 +68,7 @@ PetscErrorCode BoltNewmarkSetFromOptions(BoltNewmark *nm)
   PetscCall(PetscOptionsReal("-ts_end", "End time [s]", NULL, nm->tEnd, &nm->tEnd, NULL));
   PetscCall(PetscOptionsReal("-newmark_beta", "Newmark beta", NULL, nm->beta, &nm->beta, NULL));
   PetscCall(PetscOptionsReal("-newmark_gamma", "Newmark gamma", NULL, nm->gamma, &nm->gamma, NULL));
-  PetscCall(PetscOptionsEnum("-load_history", "Time history of the load: step, sine, ramp (to -load_ramp_time, then held), release (ramp removed at -load_release_time) or sweep", "BoltLoadHistory", hist, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
+  PetscCall(PetscOptionsEnum("-load_history", "Time history of the load: step, sine, ramp (to -load_ramp_time, then held), release (ramp removed at -load_release_time) or sweep", "BoltLoadHistory", BoltLoadHistories, (PetscEnum)nm->history, (PetscEnum *)&nm->history, NULL));
   PetscCall(PetscOptionsReal("-load_frequency", "Frequency of the sine load [Hz]", NULL, nm->frequency, &nm->frequency, NULL));
   PetscCall(PetscOptionsReal("-load_ramp_time", "Time at which the ramp load reaches its full value [s] (default: -ts_end)", NULL, nm->rampTime, &nm->rampTime, NULL));
   PetscCall(PetscOptionsReal("-load_release_time", "Time at which the release load drops to zero [s] (-load_history release)", NULL, nm->releaseTime, &nm->releaseTime, NULL));
