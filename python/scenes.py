@@ -33,8 +33,8 @@ FRICTION_SCENES = [
 # FRICTION_FREQUENCY over FRICTION_CYCLES cycles. None of them chose a default of the ROM.
 FRICTION_FREQUENCY = 80
 FRICTION_CYCLES = 4
-X, Y, Z = (["-load_direction", d, "-probe_component", c] for d, c in (("1,0,0", "0"), ("0,1,0", "1"), ("0,0,-1", "2")))
-CORNER = ["-load_group", "corner_point"]
+_ALONG_X, _ALONG_Y, _ALONG_Z = (["-load_direction", d, "-probe_component", c] for d, c in (("1,0,0", "0"), ("0,1,0", "1"), ("0,0,-1", "2")))
+_AT_CORNER = ["-load_group", "corner_point"]
 
 
 def _frictional(mu, preload, force):
@@ -42,12 +42,12 @@ def _frictional(mu, preload, force):
 
 
 FRICTION_ACCEPTANCE = [
-    ("mu0.15-P10k-X40", _frictional(0.15, 10000, 40) + X),
-    ("mu0.15-P10k-X120", _frictional(0.15, 10000, 120) + X),
-    ("mu0.1-P5k-Y30", _frictional(0.1, 5000, 30) + Y),
-    ("mu0.3-P20k-Z20", _frictional(0.3, 20000, 20) + Z),
-    ("mu0.1-P20k-Z50", _frictional(0.1, 20000, 50) + Z),
-    ("mu0.2-P5k-CX50", _frictional(0.2, 5000, 50) + X + CORNER),
-    ("mu0.1-P10k-CZ10", _frictional(0.1, 10000, 10) + Z + CORNER),
-    ("mu0.3-P20k-CY100", _frictional(0.3, 20000, 100) + Y + CORNER),
+    ("mu0.15-P10k-X40", _frictional(0.15, 10000, 40) + _ALONG_X),
+    ("mu0.15-P10k-X120", _frictional(0.15, 10000, 120) + _ALONG_X),
+    ("mu0.1-P5k-Y30", _frictional(0.1, 5000, 30) + _ALONG_Y),
+    ("mu0.3-P20k-Z20", _frictional(0.3, 20000, 20) + _ALONG_Z),
+    ("mu0.1-P20k-Z50", _frictional(0.1, 20000, 50) + _ALONG_Z),
+    ("mu0.2-P5k-CX50", _frictional(0.2, 5000, 50) + _ALONG_X + _AT_CORNER),
+    ("mu0.1-P10k-CZ10", _frictional(0.1, 10000, 10) + _ALONG_Z + _AT_CORNER),
+    ("mu0.3-P20k-CY100", _frictional(0.3, 20000, 100) + _ALONG_Y + _AT_CORNER),
 ]

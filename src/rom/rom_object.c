@@ -126,10 +126,6 @@ PetscErrorCode BoltROMCheckOptions(BoltROM *rom, BoltContactSet *contact)
   PetscFunctionReturn(0);
 }
 
-/* What the FOM of this run hands the offline phase, or NULL and 0: its preloaded state (else
-   solved offline), its displacement snapshots (for -rom_snapshot_modes) and, per local contact
-   point, whether its state left the preloaded one (for -rom_train). Referenced until SetUp
-   returns. */
 /* Whether the scene's load is periodic: its slip shapes then reach further (docs/decisions.md). */
 PetscErrorCode BoltROMSetPeriodicLoad(BoltROM *rom, PetscBool periodic)
 {
@@ -138,6 +134,10 @@ PetscErrorCode BoltROMSetPeriodicLoad(BoltROM *rom, PetscBool periodic)
   PetscFunctionReturn(0);
 }
 
+/* What the FOM of this run hands the offline phase, or NULL and 0: its preloaded state (else
+   solved offline), its displacement snapshots (for -rom_snapshot_modes) and, per local contact
+   point, whether its state left the preloaded one (for -rom_train). Referenced until SetUp
+   returns. */
 PetscErrorCode BoltROMSetTraining(BoltROM *rom, const BoltPreloadState *fomPreload, PetscInt nsnap, Vec snap[], const PetscBool changed[])
 {
   PetscFunctionBeginUser;
