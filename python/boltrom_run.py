@@ -1,0 +1,18 @@
+"""Running boltrom from the scripts: the environment every run gets (mpiexec as root in the
+sandbox and CI, one OpenBLAS thread per rank, so that two ranks use the two cores and no more),
+and one call that echoes the command and stops the script with the run's last output if it fails."""
+import os
+import subprocess
+
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
+
+
+def call(cmd, cwd=None, tail=1500):
+    """Runs cmd (a list; its items are turned into strings) and returns the finished process; a
+    failure ends the script with the command and the last tail characters of both streams."""
+    cmd = [str(c) for c in cmd]
+    print("+", " ".join(cmd), flush=True)
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=cwd, stdin=subprocess.DEVNULL)
+    if proc.returncode != 0:
+        raise SystemExit(f"failed (exit {proc.returncode}): {' '.join(cmd)}\n{proc.stdout[-tail:]}\n{proc.stderr[-tail:]}")
+    return proc
