@@ -124,7 +124,8 @@ stress-strict: deps all
 # harmonic loads along z with them, along x with the normal shapes alone (-m150-cone-normal-c8),
 # and at level 1 on 2 ranks (about 26 min of the target's time). Last, the default ROM against the
 # reduced contact's frictional acceptance over eight scenes at levels 0.5 and 1 (scripts/rom-friction,
-# output/rom-friction-L*/, about 17 min).
+# output/rom-friction-L*/, about 17 min), and the trained ROM over the same scenes, each trained on
+# a stepped sine of its own (--trained, output/rom-friction-L*-trained/, about 35 min).
 friction: deps all
 	$(PYTHON) scripts/friction-scenes --results
 	$(PYTHON) scripts/friction-scenes --rom --ringdown --results
@@ -140,6 +141,8 @@ friction: deps all
 	$(PYTHON) scripts/friction-scenes --level 1 --np 2 --rom --rom-train 300 --rom-train-from 10 --rom-cone 0.999 --rom-modes 150 --cycles 8 --amplitudes 30 100 --ringdown --results
 	$(PYTHON) scripts/rom-friction --level 0.5 --results
 	$(PYTHON) scripts/rom-friction --level 1 --results
+	$(PYTHON) scripts/rom-friction --level 0.5 --trained --results
+	$(PYTHON) scripts/rom-friction --level 1 --trained --results
 
 # The Brake-Reuss beam: its modes about the preloaded state (stuck, and the lap frictionless) at
 # levels 0.5, 1 and 1.5, and its backbone from ring-downs with friction at levels 0.5 and 1 by
