@@ -146,11 +146,13 @@ friction: deps all
 
 # The Brake-Reuss beam: its modes about the preloaded state (stuck, and the lap frictionless) at
 # levels 0.5, 1 and 1.5, and its backbone from ring-downs with friction at levels 0.5 and 1 by
-# the FOM and by one ROM, end to end (output/brb-*, docs/results.md; about 50 min).
+# the FOM and by one ROM, end to end, and at level 0.5 by the ROM trained on the largest
+# ring-down's snapshots (output/brb-*, docs/results.md; about 55 min).
 brb: deps all
 	$(PYTHON) scripts/brb-modes --np $(NP) --levels 0.5 1 1.5 --results
 	$(PYTHON) scripts/brb-backbone --np $(NP) --level 0.5 --rom --results
 	$(PYTHON) scripts/brb-backbone --np $(NP) --level 1 --rom --results
+	$(PYTHON) scripts/brb-backbone --np $(NP) --level 0.5 --rom --rom-snapshots --results
 
 # The axial load with friction against CalculiX at level 1, the load point held (16 increments)
 # and free (8), their JSON in docs/data/ and docs/ccx-friction-L1.png (docs/verification.md
