@@ -14,6 +14,10 @@ TRAINED_ROM = ["-rom_n_ccm", "300", "-rom_n_jim", "300", "-rom_snapshot_modes", 
                "-rom_cone_traction", "false", "-rom_cone_modes", "150"]
 
 
+class RunFailed(SystemExit):
+    """A boltrom run that exited non-zero: it ends a script unless the script catches it."""
+
+
 def call(cmd, cwd=None, tail=1500):
     """Runs cmd (a list; its items are turned into strings) and returns the finished process; a
     failure ends the script with the command and the last tail characters of both streams."""
@@ -21,5 +25,5 @@ def call(cmd, cwd=None, tail=1500):
     print("+", " ".join(cmd), flush=True)
     proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=cwd, stdin=subprocess.DEVNULL)
     if proc.returncode != 0:
-        raise SystemExit(f"failed (exit {proc.returncode}): {' '.join(cmd)}\n{proc.stdout[-tail:]}\n{proc.stderr[-tail:]}")
+        raise RunFailed(f"failed (exit {proc.returncode}): {' '.join(cmd)}\n{proc.stdout[-tail:]}\n{proc.stderr[-tail:]}")
     return proc
